@@ -1,0 +1,89 @@
+#include "central_difference_stepper.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "errors.hpp"
+
+namespace nbm {
+namespace {
+
+SparseMatrix diagonal_matrix(const Vector& d) {
+  SparseMatrix D(d.size(), d.size());
+  std::vector<Triplet> t;
+  for (Index i = 0; i < d.size(); ++i) t.emplace_back(i, i, d(i));
+  D.setFromTriplets(t.begin(), t.end());
+  return D;
+}
+
+}  // namespace
+
+Vector lumped_mass(const SparseMatrix& M) {
+  Vector m = Vector::Zero(M.rows());
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it) m(it.row()) += it.value();
+  return m;
+}
+
+double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
+  const Index n = m.size();
+  if (n == 0) return 0;
+  // Gershgorin on the symmetric form D^{-1/2} K D^{-1/2}.
+  const Vector s = m.cwiseSqrt().cwiseInverse();
+  Vector row = Vector::Zero(n);
+  for (Index j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+      row(it.row()) += std::abs(it.value()) * s(it.row()) * s(j);
+  const double gershgorin = row.maxCoeff();
+
+  // Power iteration on D^{-1} K from the most oscillating start (the highest
+  // modes alternate in sign from dof to dof).
+  Vector x(n);
+  for (Index i = 0; i < n; ++i) x(i) = (i % 2 ? 1.0 : -1.0) * (1.0 + 1e-3 * (i % 7));
+  double rayleigh = 0;
+  for (int it = 0; it < 2000; ++it) {
+    const Vector Kx = K * x;
+    const double r = x.dot(Kx) / x.dot(m.cwiseProduct(x));
+    x = Kx.cwiseQuotient(m);
+    x /= x.norm();
+    const bool converged = std::abs(r - rayleigh) <= 1e-10 * std::abs(r);
+    rayleigh = r;
+    if (converged) break;
+  }
+  return std::min(gershgorin, rayleigh);
+}
+
+CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem, double dt)
+    : Stepper(problem, dt),
+      lumped_(diagonal_matrix(lumped_mass(problem.M()))),
+      critical_dt_(2.0 / std::sqrt(max_eigenvalue(problem.K(), lumped_.diagonal()))),
+      solver_(make_diagonal_inverse(lumped_.diagonal(), "M (row-sum lumped)"),
+              problem.constraint_basis()) {
+  if (dt > critical_dt_) {
+    std::ostringstream msg;
+    msg << "dt: " << dt << " exceeds the critical time step " << critical_dt_
+        << " of the explicit scheme (2/omega_max with lumped mass); reduce dt or use "
+           "scheme=\"newmark\"";
+    throw InputError(msg.str());
+  }
+}
+
+void CentralDifferenceStepper::solve_acceleration(const Vector& F) {
+  const Vector r = F - problem_.K() * u_;
+  solver_.solve(active_, r, Vector::Zero(problem_.n_contact()), a_);
+}
+
+StepReport CentralDifferenceStepper::step(const Vector& F_next) {
+  if (!initialized_) throw InputError("step: the stepper has no initial state");
+  StepReport report;
+  report.active_set_iterations = 1;
+  const Vector a_old = a_;
+  u_ += dt_ * v_ + (0.5 * dt_ * dt_) * a_;
+  active_ = boundary_.enforce(u_, F_next, active_).active;
+  solve_acceleration(F_next);
+  v_ += (0.5 * dt_) * (a_old + a_);
+  finish_step(F_next);
+  return report;
+}
+
+}  // namespace nbm

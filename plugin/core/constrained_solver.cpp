@@ -1,0 +1,32 @@
+#include "constrained_solver.hpp"
+
+#include "errors.hpp"
+
+namespace nbm {
+
+ConstrainedSolver::ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B)
+    : X_(std::move(X)), B_(B), n_c_(B.cols() / 2), W_(X_->gram(B)) {}
+
+void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Vector& h,
+                              Vector& x) const {
+  const auto& schur = schur_.get(active, [&] {
+    Matrix S(n_c_, n_c_);
+    for (Index a = 0; a < n_c_; ++a)
+      for (Index b = 0; b < n_c_; ++b) S(a, b) = W_(column(active, a), column(active, b));
+    Eigen::LDLT<Matrix> ldlt(S);
+    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all())
+      throw NumericalError("the constraint Schur complement of an active set is singular");
+    return ldlt;
+  });
+  x = r;
+  X_->solve_in_place(x);
+  Vector mu(n_c_);
+  for (Index k = 0; k < n_c_; ++k) mu(k) = h(k) - B_.col(column(active, k)).dot(x);
+  mu = schur.solve(mu);
+  Vector correction = Vector::Zero(x.size());
+  for (Index k = 0; k < n_c_; ++k) correction += mu(k) * B_.col(column(active, k));
+  X_->solve_in_place(correction);
+  x += correction;
+}
+
+}  // namespace nbm

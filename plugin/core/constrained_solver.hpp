@@ -1,0 +1,41 @@
+// Solves the constrained systems of the reduced equations (method.md §4)
+//
+//     X x = r + G^T mu,   G x = h,
+//
+// for any active set, with X (M + beta dt^2 K, or a mass matrix) factored once.
+// The rows of G are columns of B = [K_{:,C}  E_C]; with W = B^T X^{-1} B
+// computed once, the Schur complement G X^{-1} G^T of an active set is a
+// principal submatrix of W: an active-set change costs a small dense
+// factorization (cached per set), never a new sparse one.
+#pragma once
+
+#include <memory>
+
+#include "active_set.hpp"
+#include "spd_inverse.hpp"
+#include "types.hpp"
+
+namespace nbm {
+
+class ConstrainedSolver {
+ public:
+  ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B);
+
+  /// x solves X x = r + G^T mu, G x = h (h: one value per contact node).
+  void solve(const ActiveSet& active, const Vector& r, const Vector& h, Vector& x) const;
+
+  const SpdInverse& inverse() const { return *X_; }
+
+ private:
+  // Column of B that is row k of G: the stiffness row if contact k is open,
+  // the unit row if it is closed.
+  Index column(const ActiveSet& active, Index k) const { return active[k] ? n_c_ + k : k; }
+
+  std::unique_ptr<SpdInverse> X_;
+  const SparseMatrix& B_;
+  Index n_c_;
+  Matrix W_;
+  mutable ActiveSetCache<Eigen::LDLT<Matrix>> schur_;
+};
+
+}  // namespace nbm

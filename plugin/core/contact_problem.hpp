@@ -1,0 +1,60 @@
+// The discrete contact problem M u'' + K u = F + contact (method.md §2) in the
+// solver's internal coordinates: Dirichlet dofs removed, contact nodes rotated
+// so that each normal displacement is one dof.
+#pragma once
+
+#include <vector>
+
+#include "contact_set.hpp"
+#include "types.hpp"
+
+namespace nbm {
+
+/// Dofs carrying FreeFEM's default Dirichlet penalty (`on(...)` with
+/// tgv = 1e30) on the diagonal of K or M: diagonal entries >= 1e29.
+std::vector<Index> detect_tgv_dofs(const SparseMatrix& M, const SparseMatrix& K);
+
+class ContactProblem {
+ public:
+  /// M, K: symmetric, n x n (full storage). `fixed`: dofs held at zero; their
+  /// rows and columns are ignored (so matrices assembled with on() are fine).
+  /// Throws InputError naming M or K on wrong sizes, non-finite or
+  /// non-symmetric entries.
+  ContactProblem(const SparseMatrix& M, const SparseMatrix& K, ContactSet contacts,
+                 std::vector<Index> fixed);
+
+  Index n_dofs() const { return n_dofs_; }        ///< size of the user's vectors
+  Index size() const { return M_.rows(); }         ///< internal unknowns
+  Index n_contact() const { return contacts_.size(); }
+  const ContactSet& contacts() const { return contacts_; }
+  const std::vector<Index>& fixed() const { return fixed_; }
+
+  const SparseMatrix& M() const { return M_; }
+  const SparseMatrix& K() const { return K_; }
+  const Vector& gaps() const { return contacts_.gaps(); }
+  /// Internal index of the contact dof (normal displacement) of each node.
+  const std::vector<Index>& contact_index() const { return contact_; }
+  /// K_CC, dense: the LCP matrix of the nodal boundary relation (§3).
+  const Matrix& K_CC() const { return K_CC_; }
+  /// B = [K_{:,C}  E_C] (size x 2 n_contact): the rows of the constraint
+  /// matrix G of §4 are columns of B (stiffness row for an open contact,
+  /// unit row for a closed one).
+  const SparseMatrix& constraint_basis() const { return B_; }
+
+  /// Internal coordinates of a user vector (displacement, velocity or load).
+  Vector to_internal(const Vector& x) const;
+  /// User vector of internal coordinates; fixed dofs are zero.
+  Vector to_user(const Vector& x) const;
+
+ private:
+  Index n_dofs_;
+  ContactSet contacts_;
+  std::vector<Index> fixed_;
+  SparseMatrix to_internal_;  // selection of free dofs times T^T
+  SparseMatrix M_, K_;
+  std::vector<Index> contact_;
+  Matrix K_CC_;
+  SparseMatrix B_;
+};
+
+}  // namespace nbm

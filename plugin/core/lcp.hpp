@@ -1,0 +1,42 @@
+// Exact solver for the linear complementarity problem of the nodal boundary
+// relation (method.md §3):
+//
+//     find z >= 0 with w = q + A z >= 0 and z . w = 0,
+//
+// for a P-matrix A (here always symmetric positive definite: A = K_CC).
+//
+// The solution is unique; it is found by block principal pivoting
+// (Judice & Pires 1994) safeguarded by Murty's single least-index pivoting,
+// which terminates finitely on every P-matrix. Termination is decided by the
+// signs of the exact subproblem solutions, never by a convergence tolerance:
+// the returned active set is the one whose principal subproblem is feasible,
+// and complementarity holds to round-off.
+#pragma once
+
+#include <vector>
+
+#include "types.hpp"
+
+namespace nbm {
+
+struct LcpResult {
+  Vector z;                   ///< z >= 0 (the gaps, in the nodal boundary relation)
+  Vector w;                   ///< w = q + A z >= 0 up to round-off (the reactions lambda)
+  std::vector<bool> active;   ///< active[i]: z_i = 0 (contact closed)
+  int pivots = 0;             ///< number of principal subproblems solved
+};
+
+class LcpSolver {
+ public:
+  /// Solves the LCP(q, A). `guess` (optional, size n) is a warm start for the
+  /// active set {i : z_i = 0}. Throws std::runtime_error if A is not positive
+  /// definite on a principal block it has to factor, or on non-finite data.
+  static LcpResult solve(const Matrix& A, const Vector& q,
+                         const std::vector<bool>& guess = {});
+
+  /// max_i |min(z_i, w_i)| relative to the scale of (q, A z): a merit
+  /// function that is zero exactly at the solution.
+  static double residual(const Matrix& A, const Vector& q, const Vector& z);
+};
+
+}  // namespace nbm

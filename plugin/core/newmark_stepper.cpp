@@ -1,0 +1,95 @@
+#include "newmark_stepper.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "errors.hpp"
+
+namespace nbm {
+
+NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
+                               NewmarkParameters parameters)
+    : Stepper(problem, dt),
+      parameters_(parameters),
+      solver_(
+          [&] {
+            if (!(parameters.beta > 0 && parameters.beta <= 0.5))
+              throw InputError("beta: " + std::to_string(parameters.beta) +
+                               ", expected 0 < beta <= 1/2 (beta = 0 is the explicit scheme)");
+            if (!(parameters.gamma >= 0.5 && parameters.gamma <= 1))
+              throw InputError("gamma: " + std::to_string(parameters.gamma) +
+                               ", expected 1/2 <= gamma <= 1");
+            const SparseMatrix S = problem.M() + (parameters.beta * dt * dt) * problem.K();
+            return make_cholesky_inverse(S, "M + beta dt^2 K");
+          }(),
+          problem.constraint_basis()) {}
+
+void NewmarkStepper::solve_acceleration(const Vector& F) {
+  // Needed once per (re)start: a mass factorization used and released here.
+  const ConstrainedSolver mass(make_cholesky_inverse(problem_.M(), "M"),
+                               problem_.constraint_basis());
+  const Vector r = F - problem_.K() * u_;
+  mass.solve(active_, r, Vector::Zero(problem_.n_contact()), a_);
+}
+
+Vector NewmarkStepper::solve_displacement(const ActiveSet& active, const Vector& u_pred,
+                                          const Vector& F, Vector& u_next) const {
+  const double bdt2 = parameters_.beta * dt_ * dt_;
+  const Vector h = boundary_.displacement_constraint(active, F);
+  Vector u_hat = u_pred;
+  boundary_.project(u_hat, active, h);
+  const Vector r = problem_.M() * u_hat + bdt2 * F;
+  solver_.solve(active, r, h, u_next);
+  return u_hat;
+}
+
+StepReport NewmarkStepper::step(const Vector& F_next) {
+  if (!initialized_) throw InputError("step: the stepper has no initial state");
+  const double dt = dt_, beta = parameters_.beta, gamma = parameters_.gamma;
+  const Vector u_pred = u_ + dt * v_ + (dt * dt * (0.5 - beta)) * a_;
+  const Vector v_pred = v_ + (dt * (1 - gamma)) * a_;
+
+  // Fixed point on the active set at t_{n+1} (§5): solve with a guess, then
+  // take the LCP's set at the new interior displacement until they agree.
+  StepReport report;
+  std::vector<ActiveSet> tried;
+  ActiveSet guess = active_;
+  Vector u_next, u_hat;
+  bool consistent = false;
+  while (true) {
+    ++report.active_set_iterations;
+    u_hat = solve_displacement(guess, u_pred, F_next, u_next);
+    if (boundary_.consistent(u_next, F_next, guess)) {
+      consistent = true;
+      break;
+    }
+    tried.push_back(guess);
+    Vector u_lcp = u_next;
+    guess = boundary_.enforce(u_lcp, F_next, guess).active;
+    if (std::find(tried.begin(), tried.end(), guess) != tried.end() ||
+        report.active_set_iterations >= parameters_.max_active_set_iterations)
+      break;  // cycling
+  }
+
+  ActiveSet final_set = guess;
+  if (!consistent) {
+    // Fallback (§5): the dynamics use the active set of the LCP at the
+    // predictor; u_C^{n+1} comes from the LCP at u_O^{n+1}, so
+    // impenetrability stays exact.
+    report.fallback = true;
+    Vector u_lcp = u_pred;
+    const ActiveSet predictor_set = boundary_.enforce(u_lcp, F_next, active_).active;
+    ++report.active_set_iterations;
+    u_hat = solve_displacement(predictor_set, u_pred, F_next, u_next);
+    final_set = boundary_.enforce(u_next, F_next, predictor_set).active;
+  }
+
+  a_ = (u_next - u_hat) / (beta * dt * dt);
+  v_ = v_pred + (gamma * dt) * a_;
+  u_ = u_next;
+  active_ = final_set;
+  finish_step(F_next);
+  return report;
+}
+
+}  // namespace nbm

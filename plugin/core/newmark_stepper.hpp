@@ -1,0 +1,43 @@
+// Implicit Newmark on the reduced NBM equations (method.md §5), with the
+// active set consistent at t_{n+1}.
+#pragma once
+
+#include <memory>
+
+#include "constrained_solver.hpp"
+#include "stepper.hpp"
+
+namespace nbm {
+
+struct NewmarkParameters {
+  double beta = 0.25;  ///< average acceleration by default: energy conserving
+  double gamma = 0.5;
+  int max_active_set_iterations = 25;
+};
+
+class NewmarkStepper final : public Stepper {
+ public:
+  /// Factors S = M + beta dt^2 K once. Throws InputError on beta, gamma out
+  /// of (0, 1/2] x [1/2, 1], NumericalError if S is not positive definite.
+  NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {});
+
+  StepReport step(const Vector& F_next) override;
+
+  const NewmarkParameters& parameters() const { return parameters_; }
+
+ protected:
+  const SparseMatrix& mass() const override { return problem_.M(); }
+  void solve_acceleration(const Vector& F) override;
+
+ private:
+  /// u_{n+1} for a given active set from the predictor u_pred: solves
+  /// S u = M u_hat + beta dt^2 F, G u = h, where u_hat is u_pred with its
+  /// contact part from the nodal boundary relation of that set. Returns u_hat.
+  Vector solve_displacement(const ActiveSet& active, const Vector& u_pred, const Vector& F,
+                            Vector& u_next) const;
+
+  NewmarkParameters parameters_;
+  ConstrainedSolver solver_;
+};
+
+}  // namespace nbm

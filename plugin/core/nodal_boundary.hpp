@@ -1,0 +1,45 @@
+// The nodal boundary relation (method.md §3): contact-dof values slaved to
+// the interior ones, u_C = A u_O + e, through the LCP with the P-matrix K_CC.
+#pragma once
+
+#include <Eigen/Cholesky>
+
+#include "active_set.hpp"
+#include "contact_problem.hpp"
+#include "lcp.hpp"
+
+namespace nbm {
+
+class NodalBoundary {
+ public:
+  explicit NodalBoundary(const ContactProblem& problem);
+
+  /// Solves the LCP at the interior part of u under the load F and overwrites
+  /// u_C with its solution; returns the LCP result (z = gaps, w = reactions).
+  LcpResult enforce(Vector& u, const Vector& F, const ActiveSet& guess) const;
+
+  /// Imposes G x = h for the given active set by changing x_C only:
+  /// x_i = h_i on closed contacts, (K x)_i = h_i on open ones.
+  /// With h = (g, F) this is u_C = A u_O + e; with h = 0, v_C = A v_O.
+  void project(Vector& x, const ActiveSet& active, const Vector& h) const;
+
+  /// Right-hand side h of G u = h for the displacement: g on closed
+  /// contacts, F_C on open ones.
+  Vector displacement_constraint(const ActiveSet& active, const Vector& F) const;
+
+  /// lambda = F_C - (K u)_C (method.md §2).
+  Vector reactions(const Vector& u, const Vector& F) const;
+  /// gap = g - u_C.
+  Vector gaps(const Vector& u) const;
+
+  /// True if the active set is the LCP's at u: gap >= -tol on open contacts
+  /// and lambda >= -tol on closed ones, with tolerances at round-off scale.
+  bool consistent(const Vector& u, const Vector& F, const ActiveSet& active) const;
+
+ private:
+  const ContactProblem& problem_;
+  SparseMatrix K_C_;  // stiffness rows of the contact dofs
+  mutable ActiveSetCache<Eigen::LLT<Matrix>> open_block_;  // K_In,In factors
+};
+
+}  // namespace nbm

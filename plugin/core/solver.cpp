@@ -1,0 +1,174 @@
+#include "solver.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "central_difference_stepper.hpp"
+#include "contact_problem.hpp"
+#include "errors.hpp"
+#include "newmark_stepper.hpp"
+
+namespace nbm {
+namespace {
+
+SparseMatrix to_sparse(const CooMatrix& A, const char* name) {
+  const std::string id = name;
+  if (A.rows <= 0 || A.cols <= 0)
+    throw InputError(id + ": empty matrix (" + std::to_string(A.rows) + "x" +
+                     std::to_string(A.cols) + ")");
+  if (A.i.size() != A.value.size() || A.j.size() != A.value.size())
+    throw InputError(id + ": inconsistent coordinate arrays");
+  std::vector<Triplet> t;
+  t.reserve(A.value.size() * (A.lower_half ? 2 : 1));
+  for (std::size_t k = 0; k < A.value.size(); ++k) {
+    const long i = A.i[k], j = A.j[k];
+    if (i < 0 || i >= A.rows || j < 0 || j >= A.cols)
+      throw InputError(id + ": entry (" + std::to_string(i) + ", " + std::to_string(j) +
+                       ") outside the matrix");
+    t.emplace_back(i, j, A.value[k]);
+    if (A.lower_half && i != j) t.emplace_back(j, i, A.value[k]);
+  }
+  SparseMatrix S(A.rows, A.cols);
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+std::vector<Index> to_index(const std::vector<long>& v) { return {v.begin(), v.end()}; }
+
+Vector to_vector(const std::vector<double>& x, long n, const char* name) {
+  if (static_cast<long>(x.size()) != n)
+    throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
+                     std::to_string(n) + " (the number of dofs)");
+  return Eigen::Map<const Vector>(x.data(), n);
+}
+
+}  // namespace
+
+struct Solver::Impl {
+  SolverOptions options;
+  std::vector<long> fixed;
+  std::unique_ptr<ContactProblem> problem;
+  std::unique_ptr<Stepper> stepper;
+  double critical_dt = 0;
+  long steps = 0, fallbacks = 0;
+  // The user arrays as last returned: a step must start from them.
+  std::vector<double> u_user, v_user;
+
+  void publish(std::vector<double>& u, std::vector<double>& v) {
+    const Vector uu = problem->to_user(stepper->u());
+    const Vector vv = problem->to_user(stepper->v());
+    u.assign(uu.data(), uu.data() + uu.size());
+    v.assign(vv.data(), vv.data() + vv.size());
+    u_user = u;
+    v_user = v;
+  }
+};
+
+Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
+               const SolverOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  impl_->options = options;
+  const SparseMatrix Ks = to_sparse(K, "K");
+  const SparseMatrix Ms = to_sparse(M, "M");
+  if (Ms.rows() != Ks.rows() || Ms.cols() != Ks.cols())
+    throw InputError("M: size " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) +
+                     " differs from the size of K, " + std::to_string(Ks.rows()) + "x" +
+                     std::to_string(Ks.cols()));
+  const Index n = Ks.rows();
+  if (contact.gaps.empty())
+    throw InputError("contact set is empty: expected at least one contact node (gaps)");
+
+  std::vector<Index> fixed = to_index(options.fixed);
+  for (Index f : fixed)
+    if (f < 0 || f >= n)
+      throw InputError("fixed: index " + std::to_string(f) + " outside [0, " +
+                       std::to_string(n) + ")");
+  for (Index f : detect_tgv_dofs(Ms, Ks)) fixed.push_back(f);
+  std::sort(fixed.begin(), fixed.end());
+  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
+  impl_->fixed.assign(fixed.begin(), fixed.end());
+
+  ContactSet contacts(n, to_index(contact.dofs), contact.normals,
+                      Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()), fixed);
+  impl_->problem = std::make_unique<ContactProblem>(Ms, Ks, std::move(contacts), fixed);
+
+  if (options.scheme == "newmark") {
+    impl_->stepper = std::make_unique<NewmarkStepper>(
+        *impl_->problem, options.dt, NewmarkParameters{options.beta, options.gamma});
+  } else if (options.scheme == "explicit") {
+    auto cd = std::make_unique<CentralDifferenceStepper>(*impl_->problem, options.dt);
+    impl_->critical_dt = cd->critical_dt();
+    impl_->stepper = std::move(cd);
+  } else {
+    throw InputError("scheme: \"" + options.scheme + "\", expected \"newmark\" or \"explicit\"");
+  }
+}
+
+Solver::~Solver() = default;
+
+long Solver::n_dofs() const { return impl_->problem->n_dofs(); }
+long Solver::n_contact() const { return impl_->problem->n_contact(); }
+const SolverOptions& Solver::options() const { return impl_->options; }
+std::vector<long> Solver::fixed_dofs() const { return impl_->fixed; }
+bool Solver::initialized() const { return impl_->stepper->initialized(); }
+double Solver::time() const { return impl_->stepper->time(); }
+long Solver::steps() const { return impl_->steps; }
+long Solver::fallbacks() const { return impl_->fallbacks; }
+double Solver::critical_dt() const { return impl_->critical_dt; }
+
+void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
+                        const std::vector<double>& F, double t) {
+  const ContactProblem& p = *impl_->problem;
+  const long n = p.n_dofs();
+  const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
+  for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
+    if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
+  impl_->stepper->initialize(p.to_internal(uu), p.to_internal(vv), p.to_internal(FF), t);
+  impl_->steps = impl_->fallbacks = 0;
+  impl_->publish(u, v);
+}
+
+StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
+                      const std::vector<double>& F) {
+  if (!initialized()) throw InputError("step: no initial state; call the initialization first");
+  const ContactProblem& p = *impl_->problem;
+  const Vector FF = to_vector(F, p.n_dofs(), "F");
+  if (!FF.allFinite()) throw InputError("F: non-finite entries");
+  if (u.size() != impl_->u_user.size())
+    throw InputError("u: size " + std::to_string(u.size()) + ", expected " +
+                     std::to_string(impl_->u_user.size()) + " (resized since the last step?)");
+  if (v.size() != impl_->v_user.size())
+    throw InputError("v: size " + std::to_string(v.size()) + ", expected " +
+                     std::to_string(impl_->v_user.size()) + " (resized since the last step?)");
+  if (u != impl_->u_user || v != impl_->v_user)
+    throw InputError(
+        "u, v: changed since the last step; to restart from a new state, initialize again");
+  const StepReport r = impl_->stepper->step(p.to_internal(FF));
+  ++impl_->steps;
+  if (r.fallback) ++impl_->fallbacks;
+  impl_->publish(u, v);
+  return {r.active_set_iterations, r.fallback};
+}
+
+std::vector<double> Solver::reactions() const {
+  const Vector x = impl_->stepper->reactions();
+  return {x.data(), x.data() + x.size()};
+}
+std::vector<double> Solver::gaps() const {
+  const Vector x = impl_->stepper->gaps();
+  return {x.data(), x.data() + x.size()};
+}
+std::vector<long> Solver::active() const {
+  const auto& a = impl_->stepper->active();
+  return {a.begin(), a.end()};
+}
+std::vector<double> Solver::acceleration() const {
+  const Vector x = impl_->problem->to_user(impl_->stepper->a());
+  return {x.data(), x.data() + x.size()};
+}
+std::vector<double> Solver::energies() const {
+  const Energies e = impl_->stepper->energies();
+  return {e.kinetic, e.elastic, e.load, e.total()};
+}
+
+}  // namespace nbm

@@ -1,0 +1,85 @@
+// nbm::Solver: the NBM time integrator on the user's dofs. This header is
+// free of Eigen and FreeFEM so that the FreeFEM binding (whose headers do not
+// mix with Eigen) and other front ends can include it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace nbm {
+
+/// A sparse matrix in coordinate form, as FreeFEM hands it over. With
+/// `lower_half` only the lower triangle is stored (FreeFEM's sym=1).
+struct CooMatrix {
+  long rows = 0, cols = 0;
+  std::vector<long> i, j;
+  std::vector<double> value;
+  bool lower_half = false;
+};
+
+struct SolverOptions {
+  double dt = 0;
+  std::string scheme = "newmark";  ///< "newmark" (implicit) or "explicit"
+  double beta = 0.25, gamma = 0.5;  ///< Newmark parameters (scheme "newmark")
+  std::vector<long> fixed;          ///< Dirichlet dofs (held at zero)
+};
+
+/// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components
+/// normals[k*d ..] and gap gaps[k] (method.md §2, §7).
+struct ContactDescription {
+  std::vector<long> dofs;
+  std::vector<double> normals;
+  std::vector<double> gaps;
+};
+
+struct StepInfo {
+  int active_set_iterations = 0;
+  bool fallback = false;
+};
+
+class Solver {
+ public:
+  /// Validates everything and factors what is needed; throws InputError or
+  /// NumericalError (errors.hpp) with a message naming the faulty argument.
+  Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
+         const SolverOptions& options);
+  ~Solver();
+  Solver(const Solver&) = delete;
+  Solver& operator=(const Solver&) = delete;
+
+  long n_dofs() const;
+  long n_contact() const;
+  const SolverOptions& options() const;
+  /// Fixed dofs: the `fixed` option plus those detected from tgv = 1e30.
+  std::vector<long> fixed_dofs() const;
+
+  /// Sets the state at time t. u and v (size n_dofs) are updated in place:
+  /// contact parts follow the nodal boundary relation, fixed dofs are zeroed.
+  void initialize(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
+                  double t = 0);
+  /// Advances u and v in place by dt under the load F at the new time. u and
+  /// v must be the arrays the previous call returned (checked).
+  StepInfo step(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F);
+
+  bool initialized() const;
+  double time() const;
+  long steps() const;
+  long fallbacks() const;
+  /// Critical time step of the explicit scheme (0 for the implicit one).
+  double critical_dt() const;
+
+  // Diagnostics of the current state (method.md §2, §7).
+  std::vector<double> reactions() const;  ///< lambda >= 0 per contact node
+  std::vector<double> gaps() const;       ///< g - u_n >= 0 per contact node
+  std::vector<long> active() const;       ///< 1 where the contact is closed
+  std::vector<double> acceleration() const;
+  /// kinetic, elastic, load potential, total.
+  std::vector<double> energies() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nbm

@@ -1,0 +1,234 @@
+// FreeFEM binding of the nbm core: the `NBM` solver type and its functions.
+//
+//   load "nbm"
+//   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "newmark",
+//         beta = 0.25, gamma = 0.5, fixed = fixedDofs);
+//   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
+//   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
+//   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
+//   nbmEnergies(S, e);  real t = nbmTime(S); ...
+//
+// Only this file sees FreeFEM headers. Every error from the core reaches the
+// script as an ExecError whose message names the argument.
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+#include "solver.hpp"
+
+using namespace Fem2D;
+
+namespace {
+
+// The script-side object: one pointer, null until constructed.
+struct NbmHandle {
+  nbm::Solver* solver;
+  void init() { solver = nullptr; }
+  void destroy() {
+    delete solver;
+    solver = nullptr;
+  }
+};
+
+[[noreturn]] void fail(const std::string& what) { ExecError("nbm: " + what); throw 0; }
+
+// Runs f, turning core exceptions into ExecError with their message.
+template <class F>
+auto guarded(const char* function, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    fail(std::string(function) + ": " + e.what());
+  }
+}
+
+nbm::Solver& solver_of(NbmHandle* h, const char* function) {
+  if (!h || !h->solver)
+    fail(std::string(function) + ": the NBM object was not constructed (declare it as "
+         "NBM S(M, K, cdofs, normals, gaps, dt=...))");
+  return *h->solver;
+}
+
+nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* name) {
+  if (!A || !A->pHM())
+    fail(std::string("NBM: matrix ") + name + " is empty or not an assembled sparse matrix");
+  const HashMatrix<int, double>& H = *A->pHM();
+  nbm::CooMatrix coo;
+  coo.rows = H.n;
+  coo.cols = H.m;
+  coo.lower_half = H.half != 0;
+  coo.i.resize(H.nnz);
+  coo.j.resize(H.nnz);
+  coo.value.resize(H.nnz);
+  const int base = H.fortran;
+  for (size_t k = 0; k < H.nnz; ++k) {
+    coo.i[k] = H.i[k] - base;
+    coo.j[k] = H.j[k] - base;
+    coo.value[k] = H.aij[k];
+  }
+  return coo;
+}
+
+template <class T, class K>
+std::vector<T> vector_of(KN<K>* x, const char* function, const char* name) {
+  if (!x) fail(std::string(function) + ": array " + name + " is missing");
+  std::vector<T> v(x->N());
+  for (long i = 0; i < x->N(); ++i) v[i] = static_cast<T>((*x)[i]);
+  return v;
+}
+
+template <class K, class T>
+void assign(KN<K>* x, const std::vector<T>& v) {
+  if (x->N() != static_cast<long>(v.size())) x->resize(v.size());
+  for (long i = 0; i < static_cast<long>(v.size()); ++i) (*x)[i] = static_cast<K>(v[i]);
+}
+
+// NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
+class NbmConstruct : public E_F0mps {
+ public:
+  static const int n_name_param = 5;
+  static basicAC_F0::name_and_type name_param[];
+  Expression nargs[n_name_param];
+  Expression handle, M, K, dofs, normals, gaps;
+
+  NbmConstruct(const basicAC_F0& args, const Expression (&e)[6])
+      : handle(e[0]), M(e[1]), K(e[2]), dofs(e[3]), normals(e[4]), gaps(e[5]) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+  }
+
+  AnyType operator()(Stack s) const override {
+    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
+    nbm::SolverOptions opt;
+    if (!nargs[0]) fail("NBM: the time step dt=... is required");
+    opt.dt = GetAny<double>((*nargs[0])(s));
+    if (nargs[1]) opt.scheme = *GetAny<string*>((*nargs[1])(s));
+    if (nargs[2]) opt.beta = GetAny<double>((*nargs[2])(s));
+    if (nargs[3]) opt.gamma = GetAny<double>((*nargs[3])(s));
+    if (nargs[4]) opt.fixed = vector_of<long>(GetAny<KN<long>*>((*nargs[4])(s)), "NBM", "fixed");
+    nbm::ContactDescription contact;
+    contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
+    contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
+    contact.gaps = vector_of<double>(GetAny<KN<double>*>((*gaps)(s)), "NBM", "gaps");
+    const nbm::CooMatrix Mc = coo_of(GetAny<Matrice_Creuse<double>*>((*M)(s)), "M");
+    const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*K)(s)), "K");
+    nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
+    delete h->solver;
+    h->solver = solver;
+    return h;
+  }
+  operator aType() const override { return atype<NbmHandle*>(); }
+};
+
+basicAC_F0::name_and_type NbmConstruct::name_param[] = {
+    {"dt", &typeid(double)},
+    {"scheme", &typeid(string*)},
+    {"beta", &typeid(double)},
+    {"gamma", &typeid(double)},
+    {"fixed", &typeid(KN<long>*)},
+};
+
+class NbmConstructOp : public OneOperator {
+ public:
+  NbmConstructOp()
+      : OneOperator(atype<NbmHandle*>(), atype<NbmHandle*>(), atype<Matrice_Creuse<double>*>(),
+                    atype<Matrice_Creuse<double>*>(), atype<KN<long>*>(), atype<KN<double>*>(),
+                    atype<KN<double>*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[6];
+    for (int k = 0; k < 6; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new NbmConstruct(args, e);
+  }
+};
+
+// The state vectors cross the boundary as std::vector copies: O(n) per step,
+// negligible next to a sparse solve.
+long nbm_init(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+              KN<double>* const& F) {
+  nbm::Solver& S = solver_of(h, "nbmInit");
+  std::vector<double> uu = vector_of<double>(u, "nbmInit", "u");
+  std::vector<double> vv = vector_of<double>(v, "nbmInit", "v");
+  const std::vector<double> FF = vector_of<double>(F, "nbmInit", "F");
+  guarded("nbmInit", [&] { S.initialize(uu, vv, FF); });
+  assign(u, uu);
+  assign(v, vv);
+  return 0;
+}
+
+long nbm_step(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+              KN<double>* const& F) {
+  nbm::Solver& S = solver_of(h, "nbmStep");
+  std::vector<double> uu = vector_of<double>(u, "nbmStep", "u");
+  std::vector<double> vv = vector_of<double>(v, "nbmStep", "v");
+  const std::vector<double> FF = vector_of<double>(F, "nbmStep", "F");
+  const nbm::StepInfo info = guarded("nbmStep", [&] { return S.step(uu, vv, FF); });
+  assign(u, uu);
+  assign(v, vv);
+  return info.active_set_iterations;
+}
+
+
+long nbm_reactions(NbmHandle* const& h, KN<double>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmReactions");
+  if (!S.initialized()) fail("nbmReactions: call nbmInit first");
+  assign(out, S.reactions());
+  return out->N();
+}
+long nbm_gaps(NbmHandle* const& h, KN<double>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmGaps");
+  if (!S.initialized()) fail("nbmGaps: call nbmInit first");
+  assign(out, S.gaps());
+  return out->N();
+}
+long nbm_active(NbmHandle* const& h, KN<long>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmActive");
+  if (!S.initialized()) fail("nbmActive: call nbmInit first");
+  assign(out, S.active());
+  return out->N();
+}
+long nbm_energies(NbmHandle* const& h, KN<double>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmEnergies");
+  if (!S.initialized()) fail("nbmEnergies: call nbmInit first");
+  assign(out, S.energies());
+  return out->N();
+}
+long nbm_acceleration(NbmHandle* const& h, KN<double>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmAcceleration");
+  if (!S.initialized()) fail("nbmAcceleration: call nbmInit first");
+  assign(out, S.acceleration());
+  return out->N();
+}
+long nbm_fixed(NbmHandle* const& h, KN<long>* const& out) {
+  assign(out, solver_of(h, "nbmFixedDofs").fixed_dofs());
+  return out->N();
+}
+double nbm_time(NbmHandle* const& h) { return solver_of(h, "nbmTime").time(); }
+double nbm_critical_dt(NbmHandle* const& h) { return solver_of(h, "nbmCriticalDt").critical_dt(); }
+long nbm_fallbacks(NbmHandle* const& h) { return solver_of(h, "nbmFallbacks").fallbacks(); }
+long nbm_n_contact(NbmHandle* const& h) { return solver_of(h, "nbmContactNodes").n_contact(); }
+
+void Load_Init() {
+  Dcl_Type<NbmHandle*>(InitP<NbmHandle>, Destroy<NbmHandle>);
+  zzzfff->Add("NBM", atype<NbmHandle*>());
+  TheOperators->Add("<-", new NbmConstructOp);
+
+  using H = NbmHandle*;
+  using R = KN<double>*;
+  Global.Add("nbmInit", "(", new OneOperator4_<long, H, R, R, R>(nbm_init));
+  Global.Add("nbmStep", "(", new OneOperator4_<long, H, R, R, R>(nbm_step));
+  Global.Add("nbmReactions", "(", new OneOperator2_<long, H, R>(nbm_reactions));
+  Global.Add("nbmGaps", "(", new OneOperator2_<long, H, R>(nbm_gaps));
+  Global.Add("nbmActive", "(", new OneOperator2_<long, H, KN<long>*>(nbm_active));
+  Global.Add("nbmEnergies", "(", new OneOperator2_<long, H, R>(nbm_energies));
+  Global.Add("nbmAcceleration", "(", new OneOperator2_<long, H, R>(nbm_acceleration));
+  Global.Add("nbmFixedDofs", "(", new OneOperator2_<long, H, KN<long>*>(nbm_fixed));
+  Global.Add("nbmTime", "(", new OneOperator1_<double, H>(nbm_time));
+  Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
+  Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
+  Global.Add("nbmContactNodes", "(", new OneOperator1_<long, H>(nbm_n_contact));
+}
+
+}  // namespace
+
+LOADFUNC(Load_Init)
