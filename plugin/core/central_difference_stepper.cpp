@@ -18,13 +18,6 @@ SparseMatrix diagonal_matrix(const Vector& d) {
 
 }  // namespace
 
-Vector lumped_mass(const SparseMatrix& M) {
-  Vector m = Vector::Zero(M.rows());
-  for (Index j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it) m(it.row()) += it.value();
-  return m;
-}
-
 double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
   const Index n = m.size();
   if (n == 0) return 0;
@@ -55,10 +48,10 @@ double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
 
 CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem, double dt)
     : Stepper(problem, dt),
-      lumped_(diagonal_matrix(lumped_mass(problem.M()))),
-      critical_dt_(2.0 / std::sqrt(max_eigenvalue(problem.K(), lumped_.diagonal()))),
+      lumped_(diagonal_matrix(problem.lumped_mass())),
       solver_(make_diagonal_inverse(lumped_.diagonal(), "M (row-sum lumped)"),
-              problem.constraint_basis()) {
+              problem.constraint_basis()),
+      critical_dt_(2.0 / std::sqrt(max_eigenvalue(problem.K(), lumped_.diagonal()))) {
   if (dt > critical_dt_) {
     std::ostringstream msg;
     msg << "dt: " << dt << " exceeds the critical time step " << critical_dt_

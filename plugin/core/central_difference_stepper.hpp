@@ -9,9 +9,6 @@
 
 namespace nbm {
 
-/// Row-sum lumping of a mass matrix (internal coordinates).
-Vector lumped_mass(const SparseMatrix& M);
-
 /// Estimate of the largest eigenvalue omega_max^2 of the pencil (K, diag(m)):
 /// power iteration (Rayleigh quotient, a lower bound that converges to it),
 /// capped by the Gershgorin bound (an upper bound).
@@ -34,8 +31,8 @@ class CentralDifferenceStepper final : public Stepper {
 
  private:
   SparseMatrix lumped_;
+  ConstrainedSolver solver_;  // before critical_dt_: it validates the lumped mass
   double critical_dt_;
-  ConstrainedSolver solver_;
 };
 
 }  // namespace nbm

@@ -14,7 +14,11 @@ constexpr double kTgvThreshold = 1e29;
 // Assembly in double precision leaves K symmetric to a few ulps.
 constexpr double kSymmetryTolerance = 1e-10;
 
-void check_matrix(const SparseMatrix& A, Index n, const char* name) {
+// Sizes, finite entries and symmetry of A. Rows and columns of fixed dofs
+// are ignored by the solver, so they are left out of the symmetry test and
+// of its scale (FreeFEM's on() puts tgv = 1e30 on their diagonals).
+void check_matrix(const SparseMatrix& A, Index n, const std::vector<char>& is_fixed,
+                  const char* name) {
   const std::string id = name;
   if (A.rows() != A.cols())
     throw InputError(id + ": " + std::to_string(A.rows()) + "x" + std::to_string(A.cols()) +
@@ -22,45 +26,83 @@ void check_matrix(const SparseMatrix& A, Index n, const char* name) {
   if (A.rows() != n)
     throw InputError(id + ": size " + std::to_string(A.rows()) + ", expected " +
                      std::to_string(n) + " (the size of the other matrix)");
+  auto free_entry = [&](Index i, Index j) { return !is_fixed[i] && !is_fixed[j]; };
   double a_max = 0;
   for (Index j = 0; j < A.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(A, j); it; ++it) {
       if (!std::isfinite(it.value()))
         throw InputError(id + ": non-finite entry at (" + std::to_string(it.row()) + ", " +
                          std::to_string(it.col()) + ")");
-      a_max = std::max(a_max, std::abs(it.value()));
+      if (free_entry(it.row(), j)) a_max = std::max(a_max, std::abs(it.value()));
     }
   const SparseMatrix At = A.transpose();
   const SparseMatrix D = A - At;
   for (Index j = 0; j < D.outerSize(); ++j)
     for (SparseMatrix::InnerIterator it(D, j); it; ++it)
-      if (std::abs(it.value()) > kSymmetryTolerance * a_max)
+      if (free_entry(it.row(), j) && std::abs(it.value()) > kSymmetryTolerance * a_max)
         throw InputError(id + ": not symmetric at (" + std::to_string(it.row()) + ", " +
                          std::to_string(it.col()) + "); expected a symmetric matrix");
+}
+
+// FreeFEM's on() with tgv = -2 zeroes the row and column of a Dirichlet dof
+// of K and puts 1 on its diagonal: the dof is then a unit spring, not
+// clamped, and nothing in K alone says so. Such a row (only a unit diagonal)
+// next to a coupled row of M is reported unless the dof is listed as fixed.
+void check_decoupled_rows(const SparseMatrix& M, const SparseMatrix& K,
+                          const std::vector<char>& is_fixed) {
+  std::vector<int> k_entries(K.rows(), 0), m_off_diagonal(M.rows(), 0);
+  std::vector<double> k_diagonal(K.rows(), 0.0);
+  for (Index j = 0; j < K.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
+      if (it.value() != 0.0) {
+        ++k_entries[it.row()];
+        if (it.row() == j) k_diagonal[j] = it.value();
+      }
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+      if (it.value() != 0.0 && it.row() != j) ++m_off_diagonal[it.row()];
+  for (Index i = 0; i < K.rows(); ++i)
+    if (!is_fixed[i] && k_entries[i] == 1 && k_diagonal[i] == 1.0 && m_off_diagonal[i] > 0)
+      throw InputError("K: row " + std::to_string(i) +
+                       " holds only a unit diagonal, as on() with tgv = -2 leaves a Dirichlet "
+                       "dof; such a dof is not held at zero: assemble K with the default tgv "
+                       "or list the dof in fixed=");
 }
 
 }  // namespace
 
 std::vector<Index> detect_tgv_dofs(const SparseMatrix& M, const SparseMatrix& K) {
   std::vector<Index> fixed;
-  const Index n = std::min(M.rows(), K.rows());
+  const Index n = std::min({M.rows(), M.cols(), K.rows(), K.cols()});
   for (Index i = 0; i < n; ++i)
-    if (std::abs(K.coeff(i, i)) >= kTgvThreshold || std::abs(M.coeff(i, i)) >= kTgvThreshold)
-      fixed.push_back(i);
+    for (const double a : {K.coeff(i, i), M.coeff(i, i)})
+      if (std::isfinite(a) && std::abs(a) >= kTgvThreshold) {  // inf is an error, not a tgv
+        fixed.push_back(i);
+        break;
+      }
   return fixed;
 }
 
 ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
                                ContactSet contacts, std::vector<Index> fixed)
     : n_dofs_(K.rows()), contacts_(std::move(contacts)), fixed_(std::move(fixed)) {
-  check_matrix(K, n_dofs_, "K");
-  check_matrix(M, n_dofs_, "M");
   std::sort(fixed_.begin(), fixed_.end());
   fixed_.erase(std::unique(fixed_.begin(), fixed_.end()), fixed_.end());
+  std::vector<char> is_fixed(n_dofs_, 0);
+  for (Index f : fixed_) {
+    if (f < 0 || f >= n_dofs_)
+      throw InputError("fixed: index " + std::to_string(f) + " outside [0, " +
+                       std::to_string(n_dofs_) + ")");
+    is_fixed[f] = 1;
+  }
+  check_matrix(K, n_dofs_, is_fixed, "K");
+  check_matrix(M, n_dofs_, is_fixed, "M");
+  check_decoupled_rows(M, K, is_fixed);
 
   // Internal numbering: free dofs in their original order.
   std::vector<Index> internal(n_dofs_, -1);
   Index n = 0;
+  free_.reserve(n_dofs_ - fixed_.size());
   {
     std::size_t f = 0;
     for (Index d = 0; d < n_dofs_; ++d) {
@@ -69,6 +111,7 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
         continue;
       }
       internal[d] = n++;
+      free_.push_back(d);
     }
   }
   SparseMatrix select(n, n_dofs_);
@@ -78,13 +121,20 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
       if (internal[d] >= 0) t.emplace_back(internal[d], d, 1.0);
     select.setFromTriplets(t.begin(), t.end());
   }
+  user_lumped_mass_ = M * Vector::Ones(n_dofs_);
   const SparseMatrix T = contacts_.rotation(n_dofs_);
   to_internal_ = select * SparseMatrix(T.transpose());
   const SparseMatrix back = to_internal_.transpose();
-  M_ = to_internal_ * M * back;
-  K_ = to_internal_ * K * back;
-  M_.prune(0.0);
-  K_.prune(0.0);
+  // Symmetric to the last bit (the input is symmetric to kSymmetryTolerance):
+  // Cholesky factors and the LCP rely on it.
+  const auto transformed = [&](const SparseMatrix& A) {
+    SparseMatrix B = to_internal_ * A * back;
+    B = 0.5 * (B + SparseMatrix(B.transpose()));
+    B.prune(0.0);
+    return B;
+  };
+  M_ = transformed(M);
+  K_ = transformed(K);
 
   const Index nc = contacts_.size();
   contact_.resize(nc);
@@ -102,6 +152,23 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   }
   B_.resize(n, 2 * nc);
   B_.setFromTriplets(t.begin(), t.end());
+}
+
+Vector ContactProblem::lumped_mass() const {
+  for (Index k = 0; k < contacts_.size(); ++k) {
+    const double m0 = user_lumped_mass_(contacts_.dof(k, 0));
+    for (int j = 1; j < contacts_.dim(); ++j) {
+      const double mj = user_lumped_mass_(contacts_.dof(k, j));
+      if (std::abs(mj - m0) > kSymmetryTolerance * std::max(std::abs(m0), std::abs(mj)))
+        throw InputError("M: the lumped masses of the components of contact node " +
+                         std::to_string(k) + " differ (" + std::to_string(m0) + ", " +
+                         std::to_string(mj) +
+                         "); the explicit scheme needs one nodal mass per contact node");
+    }
+  }
+  Vector m(size());
+  for (Index i = 0; i < size(); ++i) m(i) = user_lumped_mass_(free_[i]);
+  return m;
 }
 
 Vector ContactProblem::to_internal(const Vector& x) const { return to_internal_ * x; }

@@ -41,6 +41,13 @@ class ContactProblem {
   /// unit row for a closed one).
   const SparseMatrix& constraint_basis() const { return B_; }
 
+  /// Row-sum lumped mass in internal coordinates (explicit scheme). Lumping
+  /// is done on the user's M, before the rotation of the contact nodes, so it
+  /// is the usual nodal mass whatever the normals. Throws InputError if the
+  /// components of a contact node carry different lumped masses (the rotated
+  /// mass would not be diagonal).
+  Vector lumped_mass() const;
+
   /// Internal coordinates of a user vector (displacement, velocity or load).
   Vector to_internal(const Vector& x) const;
   /// User vector of internal coordinates; fixed dofs are zero.
@@ -51,6 +58,8 @@ class ContactProblem {
   ContactSet contacts_;
   std::vector<Index> fixed_;
   SparseMatrix to_internal_;  // selection of free dofs times T^T
+  std::vector<Index> free_;   // user dof of each internal unknown
+  Vector user_lumped_mass_;   // row sums of the user's M
   SparseMatrix M_, K_;
   std::vector<Index> contact_;
   Matrix K_CC_;

@@ -54,7 +54,7 @@ ContactSet::ContactSet(Index n_dofs, std::vector<Index> dofs, std::vector<double
   std::vector<char> owner(n_dofs, 0);  // 1: contact dof, 2: fixed dof
   for (Index f : fixed) {
     if (f < 0 || f >= n_dofs)
-      throw InputError("fixed dofs: index " + std::to_string(f) + " outside [0, " +
+      throw InputError("fixed: index " + std::to_string(f) + " outside [0, " +
                        std::to_string(n_dofs) + ")");
     owner[f] = 2;
   }

@@ -52,6 +52,10 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
                      std::to_string(A.cols()) + ", expected " + std::to_string(n) + "x" +
                      std::to_string(n));
   if (!A.allFinite() || !q.allFinite()) throw InputError("LCP: non-finite data");
+  // Principal blocks are factored by Cholesky, which reads one triangle only:
+  // a non-symmetric matrix would be silently replaced by another one.
+  if (!A.isApprox(A.transpose(), 1e-12))
+    throw InputError("LCP: matrix is not symmetric, expected a symmetric positive definite K_CC");
   if (!guess.empty() && static_cast<Index>(guess.size()) != n)
     throw InputError("LCP: warm-start active set has the wrong size");
 

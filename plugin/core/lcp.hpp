@@ -3,7 +3,8 @@
 //
 //     find z >= 0 with w = q + A z >= 0 and z . w = 0,
 //
-// for a P-matrix A (here always symmetric positive definite: A = K_CC).
+// for a symmetric positive definite A (A = K_CC; non-symmetric P-matrices are
+// rejected, since principal blocks are factored by Cholesky).
 //
 // The solution is unique; it is found by block principal pivoting
 // (Judice & Pires 1994) safeguarded by Murty's single least-index pivoting,
@@ -29,8 +30,9 @@ struct LcpResult {
 class LcpSolver {
  public:
   /// Solves the LCP(q, A). `guess` (optional, size n) is a warm start for the
-  /// active set {i : z_i = 0}. Throws std::runtime_error if A is not positive
-  /// definite on a principal block it has to factor, or on non-finite data.
+  /// active set {i : z_i = 0}. Throws InputError on wrong sizes, non-finite
+  /// data or a non-symmetric A, NumericalError if a principal block it has to
+  /// factor is not positive definite.
   static LcpResult solve(const Matrix& A, const Vector& q,
                          const std::vector<bool>& guess = {});
 

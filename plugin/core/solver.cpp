@@ -78,11 +78,8 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
   if (contact.gaps.empty())
     throw InputError("contact set is empty: expected at least one contact node (gaps)");
 
+  // Range errors of `fixed` are reported by ContactSet.
   std::vector<Index> fixed = to_index(options.fixed);
-  for (Index f : fixed)
-    if (f < 0 || f >= n)
-      throw InputError("fixed: index " + std::to_string(f) + " outside [0, " +
-                       std::to_string(n) + ")");
   for (Index f : detect_tgv_dofs(Ms, Ks)) fixed.push_back(f);
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
@@ -93,9 +90,16 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
   impl_->problem = std::make_unique<ContactProblem>(Ms, Ks, std::move(contacts), fixed);
 
   if (options.scheme == "newmark") {
-    impl_->stepper = std::make_unique<NewmarkStepper>(
-        *impl_->problem, options.dt, NewmarkParameters{options.beta, options.gamma});
+    NewmarkParameters parameters;
+    parameters.beta = options.beta.value_or(parameters.beta);
+    parameters.gamma = options.gamma.value_or(parameters.gamma);
+    impl_->stepper = std::make_unique<NewmarkStepper>(*impl_->problem, options.dt, parameters);
   } else if (options.scheme == "explicit") {
+    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
+      if (value->has_value())
+        throw InputError(std::string(name) +
+                         ": given with scheme \"explicit\", which is central differences "
+                         "(beta = 0, gamma = 1/2); Newmark parameters need scheme \"newmark\"");
     auto cd = std::make_unique<CentralDifferenceStepper>(*impl_->problem, options.dt);
     impl_->critical_dt = cd->critical_dt();
     impl_->stepper = std::move(cd);

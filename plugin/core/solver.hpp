@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,9 @@ struct CooMatrix {
 struct SolverOptions {
   double dt = 0;
   std::string scheme = "newmark";  ///< "newmark" (implicit) or "explicit"
-  double beta = 0.25, gamma = 0.5;  ///< Newmark parameters (scheme "newmark")
+  /// Newmark parameters, scheme "newmark" only (default 1/4, 1/2: average
+  /// acceleration); setting them with scheme "explicit" is an error.
+  std::optional<double> beta, gamma;
   std::vector<long> fixed;          ///< Dirichlet dofs (held at zero)
 };
 

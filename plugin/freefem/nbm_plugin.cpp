@@ -144,9 +144,18 @@ class NbmConstructOp : public OneOperator {
 
 // The state vectors cross the boundary as std::vector copies: O(n) per step,
 // negligible next to a sparse solve.
+// u and v are written in place: one array passed as both would be silently
+// overwritten by the velocity.
+void check_distinct(KN<double>* u, KN<double>* v, const char* function) {
+  if (u == v)
+    fail(std::string(function) + ": u and v are the same array; pass the displacement and the "
+         "velocity as two distinct arrays");
+}
+
 long nbm_init(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
               KN<double>* const& F) {
   nbm::Solver& S = solver_of(h, "nbmInit");
+  check_distinct(u, v, "nbmInit");
   std::vector<double> uu = vector_of<double>(u, "nbmInit", "u");
   std::vector<double> vv = vector_of<double>(v, "nbmInit", "v");
   const std::vector<double> FF = vector_of<double>(F, "nbmInit", "F");
@@ -159,6 +168,8 @@ long nbm_init(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
 long nbm_step(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
               KN<double>* const& F) {
   nbm::Solver& S = solver_of(h, "nbmStep");
+  if (!S.initialized()) fail("nbmStep: no initial state; call nbmInit first");
+  check_distinct(u, v, "nbmStep");
   std::vector<double> uu = vector_of<double>(u, "nbmStep", "u");
   std::vector<double> vv = vector_of<double>(v, "nbmStep", "v");
   const std::vector<double> FF = vector_of<double>(F, "nbmStep", "F");

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Runs a FreeFEM script with the freshly built plugin and the repo's .idp files.
+#   run-freefem.sh <build-dir> <repo-dir> <script.edp> [script args...]
+# Exits with FreeFem++'s code; output goes to stdout/stderr as usual.
+set -u
+build=$1 repo=$2 script=$3
+shift 3
+export FF_LOADPATH="$build/plugin;/usr/lib/freefem++;/usr/lib/x86_64-linux-gnu/freefem++"
+export FF_INCLUDEPATH="$repo/edp;$repo/tests/scripts;/usr/include/freefem++/idp"
+exec FreeFem++ -nw -ne -v 0 "$script" "$@"

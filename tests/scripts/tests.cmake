@@ -1,0 +1,53 @@
+# Script tests of the examples (FreeFem++ runs). Every example also checks
+# impenetrability at every step and exits non-zero on a violation.
+set(EDP ${PROJECT_SOURCE_DIR}/edp)
+set(CONVERGENCE ${CMAKE_CURRENT_SOURCE_DIR}/convergence.sh)
+
+nbm_script_test(exact-solutions ${CMAKE_CURRENT_SOURCE_DIR}/exact-solutions.edp)
+# nbm.idp: contact descriptions of [Pk, Pk] (k = 1, 2, 3) and scalar bars
+# against the geometry (counts, dof pairing, normals, gaps, inclined planes).
+nbm_script_test(contact-helpers ${CMAKE_CURRENT_SOURCE_DIR}/contact-helpers.edp)
+
+# Bouncing bar (benchmarks.md §A), reference data, dt = h/(k c): the relative
+# L2(0,2T) error of u(0,t) decreases at every refinement and is <= 0.03 at N = 320.
+foreach(order 1 2)
+  add_test(NAME script.bouncing-bar-convergence-P${order}
+    COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/bouncing-bar.edp
+            errL2u0 0.03 "40 80 160 320" -order ${order}
+    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+  set_tests_properties(script.bouncing-bar-convergence-P${order} PROPERTIES TIMEOUT 1200 LABELS script)
+endforeach()
+
+# Another parameter set (k = tau_f/tau_w = 2), P3, and the explicit scheme.
+add_test(NAME script.bouncing-bar-convergence-P3-k2
+  COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/bouncing-bar.edp
+          errL2u0 inf "20 40 80" -order 3 -L 5 -E 400 -rho 1 -grav 10 -h0 1.25
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+add_test(NAME script.bouncing-bar-convergence-explicit
+  COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/bouncing-bar.edp
+          errL2u0 inf "40 80 160" -order 1 -scheme explicit -L 10 -E 900 -rho 1 -grav 10 -h0 5 -dtFactor 0.5
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.bouncing-bar-convergence-P3-k2 script.bouncing-bar-convergence-explicit
+  PROPERTIES TIMEOUT 1200 LABELS script)
+
+# Clamped bar (benchmarks.md §B): the norms of the literature decrease.
+foreach(order 1 2)
+  add_test(NAME script.clamped-bar-convergence-P${order}
+    COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/clamped-bar.edp
+            L2L2u,LinfL2u,L2H1u,L2L2v,L2sigma inf "25 50 100 200" -order ${order}
+    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+  set_tests_properties(script.clamped-bar-convergence-P${order} PROPERTIES TIMEOUT 1200 LABELS script)
+endforeach()
+
+# The install step and the README's minimal example, from the installed files.
+add_test(NAME script.installed-plugin
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/installed-plugin.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.installed-plugin PROPERTIES TIMEOUT 300 LABELS script)
+
+# Clamped bar on another parameter set (L = 2, c = 2, a = 0.1): the scaled
+# exact solution 2a U(x/L, c t/L) and the same norms.
+add_test(NAME script.clamped-bar-convergence-P1-scaled
+  COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/clamped-bar.edp
+          L2L2u,LinfL2u,L2H1u,L2L2v,L2sigma inf "25 50 100" -order 1 -L 2 -E 4 -rho 1 -a 0.1
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.clamped-bar-convergence-P1-scaled PROPERTIES TIMEOUT 1200 LABELS script)

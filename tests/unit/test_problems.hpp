@@ -1,0 +1,193 @@
+// Test problems assembled here, independently of the nbm core: a P1 bar and a
+// P1 plane-strain rectangle, with consistent mass, stiffness and gravity load,
+// plus their contact boundaries. All quantities are in user coordinates.
+#pragma once
+
+#include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <cmath>
+#include <vector>
+
+#include "solver.hpp"
+
+namespace nbm_test {
+
+using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+using Trip = Eigen::Triplet<double, int>;
+
+struct Assembled {
+  Sparse M, K;
+  Eigen::VectorXd F;  // gravity load
+  double mass = 0;    // total mass rho * |Omega|
+};
+
+// ---------------------------------------------------------------- 1D bar
+
+/// Bar on (0, L), cross-section 1, N P1 elements, nodes x_i = i h (dof i).
+/// Gravity g acts along -x (towards the ground at x = 0).
+struct Bar {
+  double L = 1, rho = 1, E = 100, g = 10;
+  int N = 20;
+  double h() const { return L / N; }
+  int n_dofs() const { return N + 1; }
+  /// Wave speed and the exact free-free lumped-mass omega_max^2 = 4E/(rho h^2).
+  double omega_max_lumped() const { return std::sqrt(4 * E / (rho * h() * h())); }
+};
+
+inline Assembled assemble(const Bar& b) {
+  const int n = b.n_dofs();
+  const double h = b.h();
+  std::vector<Trip> m, k;
+  Assembled a;
+  a.F = Eigen::VectorXd::Zero(n);
+  for (int e = 0; e < b.N; ++e) {
+    const int d[2] = {e, e + 1};
+    for (int i = 0; i < 2; ++i) {
+      a.F(d[i]) -= b.rho * b.g * h / 2;
+      for (int j = 0; j < 2; ++j) {
+        m.emplace_back(d[i], d[j], b.rho * h / 6 * (i == j ? 2 : 1));
+        k.emplace_back(d[i], d[j], b.E / h * (i == j ? 1 : -1));
+      }
+    }
+  }
+  a.M.resize(n, n);
+  a.K.resize(n, n);
+  a.M.setFromTriplets(m.begin(), m.end());
+  a.K.setFromTriplets(k.begin(), k.end());
+  a.mass = b.rho * b.L;
+  return a;
+}
+
+// ------------------------------------------------- 2D plane-strain plate
+
+/// Rectangle [0, W] x [0, H] in its own frame, nx x ny cells each cut into two
+/// P1 triangles, rotated as a whole by `angle` (counter-clockwise). Node (i, j)
+/// has index j (nx+1) + i and dofs 2 node, 2 node + 1 (x, y). Gravity acts along
+/// the rotated -e_y, which is also the outward normal of the bottom edge j = 0:
+/// n = (sin a, -cos a).
+struct Plate {
+  double W = 1, H = 0.5, rho = 1, E = 100, nu = 0.3, g = 10, angle = 0;
+  int nx = 4, ny = 2;
+  int n_nodes() const { return (nx + 1) * (ny + 1); }
+  int n_dofs() const { return 2 * n_nodes(); }
+  int node(int i, int j) const { return j * (nx + 1) + i; }
+  Eigen::Vector2d normal() const { return {std::sin(angle), -std::cos(angle)}; }
+  Eigen::Matrix2d rotation() const {
+    Eigen::Matrix2d R;
+    R << std::cos(angle), -std::sin(angle), std::sin(angle), std::cos(angle);
+    return R;
+  }
+  Eigen::Vector2d position(int i, int j) const {
+    return rotation() * Eigen::Vector2d(W * i / nx, H * j / ny);
+  }
+  std::vector<int> bottom_nodes() const {
+    std::vector<int> b;
+    for (int i = 0; i <= nx; ++i) b.push_back(node(i, 0));
+    return b;
+  }
+};
+
+inline Assembled assemble(const Plate& p) {
+  const int n = p.n_dofs();
+  const double lam = p.E * p.nu / ((1 + p.nu) * (1 - 2 * p.nu));
+  const double mu = p.E / (2 * (1 + p.nu));
+  Eigen::Matrix3d D;
+  D << lam + 2 * mu, lam, 0, lam, lam + 2 * mu, 0, 0, 0, mu;
+  const Eigen::Vector2d gdir = p.normal();
+  std::vector<Trip> m, k;
+  Assembled a;
+  a.F = Eigen::VectorXd::Zero(n);
+  auto triangle = [&](int ia, int ja, int ib, int jb, int ic, int jc) {
+    const int nodes[3] = {p.node(ia, ja), p.node(ib, jb), p.node(ic, jc)};
+    const Eigen::Vector2d x[3] = {p.position(ia, ja), p.position(ib, jb), p.position(ic, jc)};
+    const double area =
+        0.5 * ((x[1] - x[0]).x() * (x[2] - x[0]).y() - (x[2] - x[0]).x() * (x[1] - x[0]).y());
+    Eigen::Matrix<double, 3, 6> B = Eigen::Matrix<double, 3, 6>::Zero();
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d& xj = x[(i + 1) % 3];
+      const Eigen::Vector2d& xk = x[(i + 2) % 3];
+      const double bi = (xj.y() - xk.y()) / (2 * area), ci = (xk.x() - xj.x()) / (2 * area);
+      B(0, 2 * i) = bi;
+      B(1, 2 * i + 1) = ci;
+      B(2, 2 * i) = ci;
+      B(2, 2 * i + 1) = bi;
+    }
+    const Eigen::Matrix<double, 6, 6> Ke = area * B.transpose() * D * B;
+    for (int i = 0; i < 3; ++i) {
+      for (int c = 0; c < 2; ++c) {
+        a.F(2 * nodes[i] + c) += p.rho * p.g * area / 3 * gdir(c);
+        for (int j = 0; j < 3; ++j) {
+          m.emplace_back(2 * nodes[i] + c, 2 * nodes[j] + c, p.rho * area / 12 * (i == j ? 2 : 1));
+          for (int d = 0; d < 2; ++d)
+            k.emplace_back(2 * nodes[i] + c, 2 * nodes[j] + d, Ke(2 * i + c, 2 * j + d));
+        }
+      }
+    }
+  };
+  for (int j = 0; j < p.ny; ++j)
+    for (int i = 0; i < p.nx; ++i) {
+      triangle(i, j, i + 1, j, i + 1, j + 1);
+      triangle(i, j, i + 1, j + 1, i, j + 1);
+    }
+  a.M.resize(n, n);
+  a.K.resize(n, n);
+  a.M.setFromTriplets(m.begin(), m.end());
+  a.K.setFromTriplets(k.begin(), k.end());
+  // Symmetric to the last bit (the element matrices are, up to round-off).
+  a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
+  a.mass = p.rho * p.W * p.H;
+  return a;
+}
+
+/// Bottom-edge contact of the plate: every bottom node, normal n, gap `gap`.
+inline nbm::ContactDescription bottom_contact(const Plate& p, double gap) {
+  nbm::ContactDescription c;
+  const Eigen::Vector2d n = p.normal();
+  for (int node : p.bottom_nodes()) {
+    c.dofs.push_back(2 * node);
+    c.dofs.push_back(2 * node + 1);
+    c.normals.push_back(n.x());
+    c.normals.push_back(n.y());
+    c.gaps.push_back(gap);
+  }
+  return c;
+}
+
+/// Ground contact of the bar at x = 0: outward normal -1.
+inline nbm::ContactDescription ground_contact(double gap = 0) {
+  nbm::ContactDescription c;
+  c.dofs = {0};
+  c.normals = {-1.0};
+  c.gaps = {gap};
+  return c;
+}
+
+// ----------------------------------------------------------- conversions
+
+/// Coordinate form of a sparse matrix, full or lower triangle only.
+inline nbm::CooMatrix to_coo(const Sparse& A, bool lower_half = false) {
+  nbm::CooMatrix c;
+  c.rows = A.rows();
+  c.cols = A.cols();
+  c.lower_half = lower_half;
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (Sparse::InnerIterator it(A, j); it; ++it) {
+      if (lower_half && it.row() < it.col()) continue;
+      c.i.push_back(it.row());
+      c.j.push_back(it.col());
+      c.value.push_back(it.value());
+    }
+  return c;
+}
+
+inline std::vector<double> to_std(const Eigen::VectorXd& x) { return {x.data(), x.data() + x.size()}; }
+inline Eigen::VectorXd to_eigen(const std::vector<double>& x) {
+  return Eigen::Map<const Eigen::VectorXd>(x.data(), x.size());
+}
+
+/// Physical energy 1/2 v'Mv + 1/2 u'Ku - F'u, computed in user coordinates.
+inline double total_energy(const Assembled& a, const Eigen::VectorXd& u, const Eigen::VectorXd& v) {
+  return 0.5 * v.dot(a.M * v) + 0.5 * u.dot(a.K * u) - a.F.dot(u);
+}
+
+}  // namespace nbm_test

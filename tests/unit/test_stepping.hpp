@@ -1,0 +1,60 @@
+// A contact problem and a stepper bundled for the stepper tests, with the
+// state exposed in user coordinates (where the test problems are assembled).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "central_difference_stepper.hpp"
+#include "contact_problem.hpp"
+#include "newmark_stepper.hpp"
+#include "test_problems.hpp"
+
+namespace nbm_test {
+
+struct Simulation {
+  Assembled a;
+  std::unique_ptr<nbm::ContactProblem> problem;
+  std::unique_ptr<nbm::Stepper> stepper;
+  Eigen::VectorXd F_int;  // gravity load in internal coordinates
+
+  Simulation(Assembled assembled, const nbm::ContactDescription& c,
+             std::vector<nbm::Index> fixed = {})
+      : a(std::move(assembled)) {
+    nbm::ContactSet set(a.K.rows(), std::vector<nbm::Index>(c.dofs.begin(), c.dofs.end()),
+                        c.normals, to_eigen(c.gaps), fixed);
+    problem = std::make_unique<nbm::ContactProblem>(a.M, a.K, std::move(set), fixed);
+    F_int = problem->to_internal(a.F);
+  }
+
+  void newmark(double dt, nbm::NewmarkParameters p = {}) {
+    stepper = std::make_unique<nbm::NewmarkStepper>(*problem, dt, p);
+  }
+  nbm::CentralDifferenceStepper& explicit_scheme(double dt) {
+    auto cd = std::make_unique<nbm::CentralDifferenceStepper>(*problem, dt);
+    auto& ref = *cd;
+    stepper = std::move(cd);
+    return ref;
+  }
+
+  void initialize(const Eigen::VectorXd& u_user, const Eigen::VectorXd& v_user) {
+    stepper->initialize(problem->to_internal(u_user), problem->to_internal(v_user), F_int);
+  }
+  nbm::StepReport step() { return stepper->step(F_int); }
+
+  Eigen::VectorXd u() const { return problem->to_user(stepper->u()); }
+  Eigen::VectorXd v() const { return problem->to_user(stepper->v()); }
+  Eigen::VectorXd acc() const { return problem->to_user(stepper->a()); }
+  /// Centre-of-mass displacement along the unit vector dir (per dof of a
+  /// node: dir has one entry per component): sum_i m_i u_i / m with the row
+  /// sums m_i of M, which is exact for P1 (int rho u = 1' M u).
+  double centre(const Eigen::VectorXd& x, const Eigen::VectorXd& dir) const {
+    const int dim = static_cast<int>(dir.size());
+    Eigen::VectorXd ones(x.size());
+    for (Eigen::Index i = 0; i < x.size(); ++i) ones(i) = dir(i % dim);
+    return ones.dot(a.M * x) / a.mass;
+  }
+  double energy() const { return total_energy(a, u(), v()); }
+};
+
+}  // namespace nbm_test
