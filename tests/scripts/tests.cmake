@@ -51,3 +51,13 @@ add_test(NAME script.clamped-bar-convergence-P1-scaled
           L2L2u,LinfL2u,L2H1u,L2L2v,L2sigma inf "25 50 100" -order 1 -L 2 -E 4 -rho 1 -a 0.1
   WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
 set_tests_properties(script.clamped-bar-convergence-P1-scaled PROPERTIES TIMEOUT 1200 LABELS script)
+
+# Bouncing plate (NBM): free flight of the centre of mass, two parameter sets.
+add_test(NAME script.plate-free-flight-P1
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/plate-free-flight.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} 10
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+add_test(NAME script.plate-free-flight-P2
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/plate-free-flight.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} 9.81
+          -order 2 -E 5000 -nu 0.2 -rho 2 -width 0.8 -height 0.3 -lc 0.05 -dt 5e-4
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.plate-free-flight-P1 script.plate-free-flight-P2 PROPERTIES TIMEOUT 300 LABELS script)
