@@ -100,7 +100,8 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   check_decoupled_rows(M, K, is_fixed);
 
   // Internal numbering: free dofs in their original order.
-  std::vector<Index> internal(n_dofs_, -1);
+  internal_.assign(n_dofs_, -1);
+  std::vector<Index>& internal = internal_;
   Index n = 0;
   free_.reserve(n_dofs_ - fixed_.size());
   {
@@ -169,6 +170,21 @@ Vector ContactProblem::lumped_mass() const {
   Vector m(size());
   for (Index i = 0; i < size(); ++i) m(i) = user_lumped_mass_(free_[i]);
   return m;
+}
+
+void ContactProblem::make_boundary_massless(SparseMatrix M) {
+  if (M.rows() != size() || M.cols() != size())
+    throw InputError("redistributed mass: size " + std::to_string(M.rows()) + ", expected " +
+                     std::to_string(size()));
+  std::vector<char> is_contact(size(), 0);
+  for (Index c : contact_) is_contact[c] = 1;
+  for (Index j = 0; j < M.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
+      if ((is_contact[it.row()] || is_contact[j]) && it.value() != 0.0)
+        throw InputError("redistributed mass: entry (" + std::to_string(it.row()) + ", " +
+                         std::to_string(j) + ") couples a contact dof, expected M_CC = 0, M_CO = 0");
+  M_ = std::move(M);
+  massless_boundary_ = true;
 }
 
 Vector ContactProblem::to_internal(const Vector& x) const { return to_internal_ * x; }

@@ -24,6 +24,8 @@ class ContactProblem {
                  std::vector<Index> fixed);
 
   Index n_dofs() const { return n_dofs_; }        ///< size of the user's vectors
+  /// Internal index of a user dof, -1 for a fixed dof.
+  Index internal_index(Index user_dof) const { return internal_[user_dof]; }
   Index size() const { return M_.rows(); }         ///< internal unknowns
   Index n_contact() const { return contacts_.size(); }
   const ContactSet& contacts() const { return contacts_; }
@@ -48,6 +50,13 @@ class ContactProblem {
   /// mass would not be diagonal).
   Vector lumped_mass() const;
 
+  /// Replaces the mass matrix by one whose rows and columns of the contact
+  /// dofs vanish (the massless boundary of method.md §4, built by
+  /// redistributed_mass()). Throws InputError if they do not vanish.
+  void make_boundary_massless(SparseMatrix M);
+  /// True after make_boundary_massless: M_CC = 0, M_CO = 0.
+  bool massless_boundary() const { return massless_boundary_; }
+
   /// Internal coordinates of a user vector (displacement, velocity or load).
   Vector to_internal(const Vector& x) const;
   /// User vector of internal coordinates; fixed dofs are zero.
@@ -58,12 +67,14 @@ class ContactProblem {
   ContactSet contacts_;
   std::vector<Index> fixed_;
   SparseMatrix to_internal_;  // selection of free dofs times T^T
-  std::vector<Index> free_;   // user dof of each internal unknown
+  std::vector<Index> free_;      // user dof of each internal unknown
+  std::vector<Index> internal_;  // internal index of each user dof, -1 if fixed
   Vector user_lumped_mass_;   // row sums of the user's M
   SparseMatrix M_, K_;
   std::vector<Index> contact_;
   Matrix K_CC_;
   SparseMatrix B_;
+  bool massless_boundary_ = false;
 };
 
 }  // namespace nbm

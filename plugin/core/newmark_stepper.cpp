@@ -7,18 +7,21 @@
 
 namespace nbm {
 
+void check_newmark_parameters(double beta, double gamma) {
+  if (!(beta > 0 && beta <= 0.5))
+    throw InputError("beta: " + std::to_string(beta) +
+                     ", expected 0 < beta <= 1/2 (beta = 0 is the explicit scheme)");
+  if (!(gamma >= 0.5 && gamma <= 1))
+    throw InputError("gamma: " + std::to_string(gamma) + ", expected 1/2 <= gamma <= 1");
+}
+
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
                                NewmarkParameters parameters)
     : Stepper(problem, dt),
       parameters_(parameters),
       solver_(
           [&] {
-            if (!(parameters.beta > 0 && parameters.beta <= 0.5))
-              throw InputError("beta: " + std::to_string(parameters.beta) +
-                               ", expected 0 < beta <= 1/2 (beta = 0 is the explicit scheme)");
-            if (!(parameters.gamma >= 0.5 && parameters.gamma <= 1))
-              throw InputError("gamma: " + std::to_string(parameters.gamma) +
-                               ", expected 1/2 <= gamma <= 1");
+            check_newmark_parameters(parameters.beta, parameters.gamma);
             const SparseMatrix S = problem.M() + (parameters.beta * dt * dt) * problem.K();
             return make_cholesky_inverse(S, "M + beta dt^2 K");
           }(),

@@ -15,6 +15,9 @@ struct NewmarkParameters {
   int max_active_set_iterations = 25;
 };
 
+/// Throws InputError unless 0 < beta <= 1/2 and 1/2 <= gamma <= 1.
+void check_newmark_parameters(double beta, double gamma);
+
 class NewmarkStepper final : public Stepper {
  public:
   /// Factors S = M + beta dt^2 K once. Throws InputError on beta, gamma out

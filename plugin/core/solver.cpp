@@ -6,6 +6,8 @@
 #include "central_difference_stepper.hpp"
 #include "contact_problem.hpp"
 #include "errors.hpp"
+#include "mass_redistribution.hpp"
+#include "massless_newmark_stepper.hpp"
 #include "newmark_stepper.hpp"
 
 namespace nbm {
@@ -89,7 +91,33 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
                       Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()), fixed);
   impl_->problem = std::make_unique<ContactProblem>(Ms, Ks, std::move(contacts), fixed);
 
-  if (options.scheme == "newmark") {
+  if (options.mass == "redistributed") {
+    const long n_pos = static_cast<long>(options.positions.size());
+    if (n_pos == 0 || n_pos % n != 0 || n_pos / n > 3)
+      throw InputError("positions: size " + std::to_string(n_pos) +
+                       ", expected 1, 2 or 3 coordinates per dof (n_dofs = " +
+                       std::to_string(n) + ") with mass = \"redistributed\"");
+    const Matrix P = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
+                                                    Eigen::RowMajor>>(options.positions.data(), n,
+                                                                      n_pos / n);
+    impl_->problem->make_boundary_massless(redistributed_mass(*impl_->problem, Ms, P));
+    if (options.scheme != "newmark")
+      throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
+                       "boundary has no explicit variant)");
+  } else if (options.mass != "consistent") {
+    throw InputError("mass: \"" + options.mass +
+                     "\", expected \"consistent\" or \"redistributed\"");
+  } else if (!options.positions.empty()) {
+    throw InputError("positions: given with mass = \"consistent\"; they are used only by "
+                     "mass = \"redistributed\"");
+  }
+
+  if (impl_->problem->massless_boundary()) {
+    NewmarkParameters parameters;
+    impl_->stepper = std::make_unique<MasslessNewmarkStepper>(
+        *impl_->problem, options.dt, options.beta.value_or(parameters.beta),
+        options.gamma.value_or(parameters.gamma));
+  } else if (options.scheme == "newmark") {
     NewmarkParameters parameters;
     parameters.beta = options.beta.value_or(parameters.beta);
     parameters.gamma = options.gamma.value_or(parameters.gamma);

@@ -26,6 +26,12 @@ struct SolverOptions {
   /// acceleration); setting them with scheme "explicit" is an error.
   std::optional<double> beta, gamma;
   std::vector<long> fixed;          ///< Dirichlet dofs (held at zero)
+  /// "consistent" (the paper's NBM: contact nodes keep their mass) or
+  /// "redistributed" (massless boundary, method.md §4: energy conserving;
+  /// implicit scheme only). Redistribution needs `positions`: for every dof
+  /// the d coordinates of its node, dof-major (size n_dofs * d, d = 1..3).
+  std::string mass = "consistent";
+  std::vector<double> positions;
 };
 
 /// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components

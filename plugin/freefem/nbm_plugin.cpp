@@ -2,7 +2,8 @@
 //
 //   load "nbm"
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "newmark",
-//         beta = 0.25, gamma = 0.5, fixed = fixedDofs);
+//         beta = 0.25, gamma = 0.5, fixed = fixedDofs,
+//         mass = "redistributed", positions = xy);   // massless boundary
 //   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
 //   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
@@ -88,7 +89,7 @@ void assign(KN<K>* x, const std::vector<T>& v) {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 5;
+  static const int n_name_param = 7;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -107,6 +108,9 @@ class NbmConstruct : public E_F0mps {
     if (nargs[2]) opt.beta = GetAny<double>((*nargs[2])(s));
     if (nargs[3]) opt.gamma = GetAny<double>((*nargs[3])(s));
     if (nargs[4]) opt.fixed = vector_of<long>(GetAny<KN<long>*>((*nargs[4])(s)), "NBM", "fixed");
+    if (nargs[5]) opt.mass = *GetAny<string*>((*nargs[5])(s));
+    if (nargs[6])
+      opt.positions = vector_of<double>(GetAny<KN<double>*>((*nargs[6])(s)), "NBM", "positions");
     nbm::ContactDescription contact;
     contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
     contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
@@ -127,6 +131,8 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"beta", &typeid(double)},
     {"gamma", &typeid(double)},
     {"fixed", &typeid(KN<long>*)},
+    {"mass", &typeid(string*)},
+    {"positions", &typeid(KN<double>*)},
 };
 
 class NbmConstructOp : public OneOperator {

@@ -30,6 +30,13 @@ add_test(NAME script.bouncing-bar-convergence-explicit
 set_tests_properties(script.bouncing-bar-convergence-P3-k2 script.bouncing-bar-convergence-explicit
   PROPERTIES TIMEOUT 1200 LABELS script)
 
+# The massless boundary (mass = "redistributed") converges to the same solution.
+add_test(NAME script.bouncing-bar-convergence-redistributed
+  COMMAND bash ${CONVERGENCE} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${EDP}/bouncing-bar.edp
+          errL2u0 inf "40 80 160" -order 1 -mass redistributed
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.bouncing-bar-convergence-redistributed PROPERTIES TIMEOUT 1200 LABELS script)
+
 # Clamped bar (benchmarks.md §B): the norms of the literature decrease.
 foreach(order 1 2)
   add_test(NAME script.clamped-bar-convergence-P${order}

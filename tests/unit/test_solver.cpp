@@ -277,6 +277,25 @@ TEST_F(SolverErrors, SchemeAndNewmarkParameters) {
   }
 }
 
+TEST_F(SolverErrors, MassTreatment) {
+  SolverOptions o = newmark();
+  o.mass = "lumped";
+  expect_construction_error(o, {"mass", "lumped", "redistributed"});
+  o.mass = "redistributed";  // without positions
+  expect_construction_error(o, {"positions", "redistributed"});
+  o.positions.assign(b.n_dofs() + 1, 0.0);
+  expect_construction_error(o, {"positions", "size"});
+  o.positions.resize(b.n_dofs());
+  for (int i = 0; i < b.n_dofs(); ++i) o.positions[i] = i * b.h();
+  EXPECT_NO_THROW(Solver(M, K, c, o));
+  o.scheme = "explicit";
+  o.dt = 1e-4;
+  expect_construction_error(o, {"mass", "newmark"});
+  o = newmark();
+  o.positions.assign(b.n_dofs(), 0.0);
+  expect_construction_error(o, {"positions", "consistent"});
+}
+
 TEST_F(SolverErrors, DirichletRowOfTgvMinus2IsNotMistakenForAClampedDof) {
   // on(..., tgv = -2) at the top end: row and column N of K zeroed, 1 on the
   // diagonal. The dof would be a unit spring, not clamped.

@@ -7,6 +7,8 @@
 
 #include "central_difference_stepper.hpp"
 #include "contact_problem.hpp"
+#include "mass_redistribution.hpp"
+#include "massless_newmark_stepper.hpp"
 #include "newmark_stepper.hpp"
 #include "test_problems.hpp"
 
@@ -29,6 +31,12 @@ struct Simulation {
 
   void newmark(double dt, nbm::NewmarkParameters p = {}) {
     stepper = std::make_unique<nbm::NewmarkStepper>(*problem, dt, p);
+  }
+  /// Massless boundary: redistributes the mass (positions: one row per user
+  /// dof, its node's coordinates), then the LCP-per-step Newmark scheme.
+  void massless(double dt, const Eigen::MatrixXd& positions) {
+    problem->make_boundary_massless(nbm::redistributed_mass(*problem, a.M, positions));
+    stepper = std::make_unique<nbm::MasslessNewmarkStepper>(*problem, dt);
   }
   nbm::CentralDifferenceStepper& explicit_scheme(double dt) {
     auto cd = std::make_unique<nbm::CentralDifferenceStepper>(*problem, dt);

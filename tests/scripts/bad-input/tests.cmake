@@ -23,6 +23,7 @@ endfunction()
 
 nbm_bad_valid(valid-newmark ${NBM_BAD_DIR}/cases.edp -case valid-newmark)
 nbm_bad_valid(valid-explicit ${NBM_BAD_DIR}/cases.edp -case valid-explicit)
+nbm_bad_valid(valid-redistributed ${NBM_BAD_DIR}/cases.edp -case valid-redistributed)
 nbm_bad_valid(plane-valid-newmark ${NBM_BAD_DIR}/plane.edp -case valid-newmark)
 nbm_bad_valid(plane-valid-explicit ${NBM_BAD_DIR}/plane.edp -case valid-explicit)
 
@@ -68,6 +69,12 @@ nbm_bad_case(gamma-small [=[NBM: gamma: 0\.40*, expected 1/2 <= gamma <= 1]=])
 nbm_bad_case(gamma-large [=[NBM: gamma: 1\.50*, expected 1/2 <= gamma <= 1]=])
 nbm_bad_case(explicit-dt-critical [=[NBM: dt: 0\.5 exceeds the critical time step [0-9.e+-]+ of the explicit scheme]=])
 nbm_bad_case(explicit-with-beta [=[NBM: beta: .*(explicit|newmark)]=])
+nbm_bad_case(mass-unknown [=[NBM: mass: "lumped", expected "consistent" or "redistributed"]=])
+nbm_bad_case(positions-missing [=[NBM: positions: size 0, expected 1, 2 or 3 coordinates per dof]=])
+nbm_bad_case(positions-size [=[NBM: positions: size 10, expected 1, 2 or 3 coordinates per dof \(n_dofs = 11\)]=])
+nbm_bad_case(positions-nan [=[NBM: positions: non-finite coordinates]=])
+nbm_bad_case(positions-consistent [=[NBM: positions: given with mass = "consistent"]=])
+nbm_bad_case(redistributed-explicit [=[NBM: mass: "redistributed" needs scheme "newmark"]=])
 
 # ---- nbmInit ----
 nbm_bad_case(init-u-size [=[nbmInit: u: size 10, expected 11]=])

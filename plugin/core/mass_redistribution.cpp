@@ -1,0 +1,115 @@
+#include "mass_redistribution.hpp"
+
+#include <string>
+#include <vector>
+
+#include "errors.hpp"
+
+namespace nbm {
+namespace {
+
+// Rings of graph neighbours tried before giving up on affine weights.
+constexpr int kMaxRings = 4;
+// Reciprocal condition of the (pdim+1)^2 moment matrix below which the
+// neighbour positions are taken as affinely dependent.
+constexpr double kMinRcond = 1e-10;
+
+// Minimum-norm w with V w = b, V = [1; x_d] (columns: candidate dofs).
+// Returns false if the candidates do not span the affine hull.
+bool affine_weights(const Matrix& X, const Vector& x0, Vector& w) {
+  const Index pdim = x0.size(), m = X.cols();
+  Matrix V(pdim + 1, m);
+  V.row(0).setOnes();
+  V.bottomRows(pdim) = X;
+  Vector b(pdim + 1);
+  b << 1.0, x0;
+  // Centre on x0 to keep the moment matrix well scaled.
+  for (Index i = 0; i < pdim; ++i) V.row(i + 1).array() -= x0(i);
+  b.tail(pdim).setZero();
+  const Matrix G = V * V.transpose();
+  const Eigen::LDLT<Matrix> ldlt(G);
+  const Vector d = ldlt.vectorD();
+  if (d.minCoeff() <= kMinRcond * d.maxCoeff()) return false;
+  w = V.transpose() * ldlt.solve(b);
+  return true;
+}
+
+}  // namespace
+
+SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatrix& M_user,
+                                const Matrix& positions) {
+  const Index n_user = problem.n_dofs();
+  if (M_user.rows() != n_user || M_user.cols() != n_user)
+    throw InputError("M: size " + std::to_string(M_user.rows()) + ", expected " +
+                     std::to_string(n_user));
+  if (positions.rows() != n_user || positions.cols() < 1 || positions.cols() > 3)
+    throw InputError("positions: " + std::to_string(positions.size()) +
+                     " values, expected 1, 2 or 3 coordinates per dof (" +
+                     std::to_string(n_user) + " dofs)");
+  if (!positions.allFinite()) throw InputError("positions: non-finite coordinates");
+
+  const ContactSet& contacts = problem.contacts();
+  std::vector<char> excluded(n_user, 0);  // contact-node and fixed dofs
+  for (Index k = 0; k < contacts.size(); ++k)
+    for (int j = 0; j < contacts.dim(); ++j) excluded[contacts.dof(k, j)] = 1;
+  for (Index d = 0; d < n_user; ++d)
+    if (problem.internal_index(d) < 0) excluded[d] = 1;
+
+  // Rows of Pi: identity except the contact dofs' rows (built below).
+  const Index n = problem.size();
+  std::vector<char> is_contact(n, 0);
+  for (Index c : problem.contact_index()) is_contact[c] = 1;
+  std::vector<Triplet> pi;
+  for (Index i = 0; i < n; ++i)
+    if (!is_contact[i]) pi.emplace_back(i, i, 1.0);
+
+  std::vector<int> ring(n_user, -1);
+  for (Index k = 0; k < contacts.size(); ++k) {
+    for (int a = 1; a < contacts.dim(); ++a)
+      if (M_user.coeff(contacts.dof(k, 0), contacts.dof(k, a)) != 0.0)
+        throw InputError("M: couples the components of contact node " + std::to_string(k) +
+                         "; mass redistribution needs a mass matrix without such coupling");
+    for (int j = 0; j < contacts.dim(); ++j) {
+      const Index d0 = contacts.dof(k, j);
+      // Breadth-first rings of the graph of M around d0 (same component).
+      std::vector<Index> frontier{d0}, visited{d0}, candidates;
+      ring[d0] = 0;
+      Vector w;
+      bool found = false;
+      for (int r = 1; r <= kMaxRings && !found; ++r) {
+        std::vector<Index> next;
+        for (Index d : frontier)
+          for (SparseMatrix::InnerIterator it(M_user, d); it; ++it)
+            if (ring[it.row()] < 0 && it.value() != 0.0) {
+              ring[it.row()] = r;
+              visited.push_back(it.row());
+              next.push_back(it.row());
+              if (!excluded[it.row()]) candidates.push_back(it.row());
+            }
+        frontier = next;
+        if (candidates.empty()) continue;
+        Matrix X(positions.cols(), candidates.size());
+        for (std::size_t c = 0; c < candidates.size(); ++c)
+          X.col(c) = positions.row(candidates[c]).transpose();
+        found = affine_weights(X, positions.row(d0).transpose(), w);
+      }
+      for (Index d : visited) ring[d] = -1;
+      if (!found)
+        throw NumericalError("mass redistribution: the interior dofs near contact node " +
+                             std::to_string(k) +
+                             " do not determine affine weights (too few or aligned nodes)");
+      const double n_kj = contacts.normal(k, j);
+      for (std::size_t c = 0; c < candidates.size(); ++c)
+        pi.emplace_back(problem.contact_index()[k], problem.internal_index(candidates[c]),
+                        n_kj * w(c));
+    }
+  }
+  SparseMatrix Pi(n, n);
+  Pi.setFromTriplets(pi.begin(), pi.end());  // sums the components' contributions
+  SparseMatrix Mr = SparseMatrix(Pi.transpose()) * problem.M() * Pi;
+  Mr = 0.5 * (Mr + SparseMatrix(Mr.transpose()));
+  Mr.prune(0.0);
+  return Mr;
+}
+
+}  // namespace nbm

@@ -1,0 +1,70 @@
+#include "massless_newmark_stepper.hpp"
+
+#include <string>
+
+#include "errors.hpp"
+#include "newmark_stepper.hpp"
+
+namespace nbm {
+
+MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
+                                               double beta, double gamma)
+    : Stepper(problem, dt), beta_(beta), gamma_(gamma) {
+  check_newmark_parameters(beta, gamma);
+  if (!problem.massless_boundary())
+    throw InputError("the massless-boundary Newmark scheme needs M_CC = 0 and M_CO = 0 "
+                     "(mass redistribution)");
+  S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
+  // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
+  const Index nc = problem.n_contact();
+  lcp_matrix_ = (beta * dt * dt) * S_->gram(problem.constraint_basis().rightCols(nc));
+}
+
+void MasslessNewmarkStepper::solve_acceleration(const Vector& F) {
+  // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives
+  // a_O = M_OO^-1 r_O and a_C = 0, then projected onto the nodal boundary
+  // relation (v_C = A v_O differentiated).
+  const Index nc = problem_.n_contact();
+  const SparseMatrix& E_C = problem_.constraint_basis().rightCols(nc);
+  const SparseMatrix M_reg = problem_.M() + SparseMatrix(E_C * E_C.transpose());
+  Vector r = F - problem_.K() * u_;
+  for (Index c : problem_.contact_index()) r(c) = 0.0;
+  make_cholesky_inverse(M_reg, "M (interior block)")->solve_in_place(r);
+  a_ = r;
+  boundary_.project(a_, active_, Vector::Zero(nc));
+}
+
+StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
+  if (!initialized_) throw InputError("step: the stepper has no initial state");
+  const double dt = dt_, bdt2 = beta_ * dt * dt;
+  const Vector u_hat = u_ + dt * v_ + (dt * dt * (0.5 - beta_)) * a_;
+  const Vector v_pred = v_ + (dt * (1 - gamma_)) * a_;
+  const auto& c = problem_.contact_index();
+  const Index nc = problem_.n_contact();
+
+  // Free step, then the LCP in lambda (header): z = lambda, w = gap.
+  Vector u = problem_.M() * u_hat + bdt2 * F_next;
+  S_->solve_in_place(u);
+  Vector q(nc);
+  for (Index k = 0; k < nc; ++k) q(k) = problem_.gaps()(k) - u(c[k]);
+  ActiveSet open(nc);
+  for (Index k = 0; k < nc; ++k) open[k] = !active_[k];  // z = lambda = 0 where open
+  const LcpResult lcp = LcpSolver::solve(lcp_matrix_, q, open);
+  if (lcp.z.cwiseAbs().maxCoeff() > 0) {
+    Vector correction = Vector::Zero(u.size());
+    for (Index k = 0; k < nc; ++k) correction(c[k]) = -bdt2 * lcp.z(k);
+    S_->solve_in_place(correction);
+    u += correction;
+  }
+
+  a_ = (u - u_hat) / bdt2;
+  v_ = v_pred + (gamma_ * dt) * a_;
+  u_ = u;
+  for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
+  finish_step(F_next);
+  StepReport report;
+  report.active_set_iterations = 1;
+  return report;
+}
+
+}  // namespace nbm

@@ -1,0 +1,45 @@
+// Implicit Newmark on the NBM equations with a massless boundary (method.md
+// §4-5, M_CC = 0 and M_CO = 0, see mass_redistribution.hpp).
+//
+// With no mass on the contact dofs, their rows of the step system
+// S u = M u_hat + beta dt^2 (F - E_C lambda), S = M + beta dt^2 K, say
+// lambda = F_C - (K u)_C: the contact force of the nodal boundary relation.
+// Eliminating u through one factorization of S leaves a small LCP in lambda,
+//     gap = g - (S^-1 r)_C + beta dt^2 W_CC lambda >= 0,  lambda >= 0,
+//     gap . lambda = 0,   W_CC = E_C^T S^-1 E_C (symmetric positive definite),
+// solved exactly: the step has a unique solution, found without iterating
+// over guessed active sets, and u_C satisfies the nodal boundary relation at
+// u_O^{n+1}, so impenetrability is exact.
+#pragma once
+
+#include <memory>
+
+#include "spd_inverse.hpp"
+#include "stepper.hpp"
+
+namespace nbm {
+
+class MasslessNewmarkStepper final : public Stepper {
+ public:
+  /// The problem must have a massless boundary (ContactProblem::
+  /// make_boundary_massless). Factors S once and forms W_CC (n_contact solves).
+  /// Throws InputError on beta, gamma out of (0, 1/2] x [1/2, 1] or a problem
+  /// with boundary mass, NumericalError if S is not positive definite.
+  MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
+                         double gamma = 0.5);
+
+  StepReport step(const Vector& F_next) override;
+
+ protected:
+  const SparseMatrix& mass() const override { return problem_.M(); }
+  /// a_O = M_OO^-1 (F - K u)_O (the contact rows carry no inertia), a_C from
+  /// the nodal boundary relation.
+  void solve_acceleration(const Vector& F) override;
+
+ private:
+  double beta_, gamma_;
+  std::unique_ptr<SpdInverse> S_;
+  Matrix lcp_matrix_;  // beta dt^2 W_CC
+};
+
+}  // namespace nbm
