@@ -8,6 +8,7 @@
 #include "errors.hpp"
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
+#include "moreau_jean_stepper.hpp"
 #include "newmark_stepper.hpp"
 
 namespace nbm {
@@ -103,7 +104,7 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
     impl_->problem->make_boundary_massless(redistributed_mass(*impl_->problem, Ms, P));
     if (options.scheme != "newmark")
       throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
-                       "boundary has no explicit variant)");
+                       "boundary has no explicit or Moreau-Jean variant)");
   } else if (options.mass != "consistent") {
     throw InputError("mass: \"" + options.mass +
                      "\", expected \"consistent\" or \"redistributed\"");
@@ -131,9 +132,20 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
     auto cd = std::make_unique<CentralDifferenceStepper>(*impl_->problem, options.dt);
     impl_->critical_dt = cd->critical_dt();
     impl_->stepper = std::move(cd);
+  } else if (options.scheme == "moreau-jean") {
+    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
+      if (value->has_value())
+        throw InputError(std::string(name) +
+                         ": given with scheme \"moreau-jean\", whose theta = 1/2 is fixed");
+    impl_->stepper = std::make_unique<MoreauJeanStepper>(*impl_->problem, options.dt,
+                                                         options.restitution.value_or(0.0));
   } else {
-    throw InputError("scheme: \"" + options.scheme + "\", expected \"newmark\" or \"explicit\"");
+    throw InputError("scheme: \"" + options.scheme +
+                     "\", expected \"newmark\", \"explicit\" or \"moreau-jean\"");
   }
+  if (options.restitution.has_value() && options.scheme != "moreau-jean")
+    throw InputError("restitution: given with scheme \"" + options.scheme +
+                     "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
 }
 
 Solver::~Solver() = default;

@@ -21,7 +21,9 @@ struct CooMatrix {
 
 struct SolverOptions {
   double dt = 0;
-  std::string scheme = "newmark";  ///< "newmark" (implicit) or "explicit"
+  /// "newmark" (implicit NBM), "explicit" (central differences NBM) or
+  /// "moreau-jean" (the Newton impact law peer, contact dofs not slaved).
+  std::string scheme = "newmark";
   /// Newmark parameters, scheme "newmark" only (default 1/4, 1/2: average
   /// acceleration); setting them with scheme "explicit" is an error.
   std::optional<double> beta, gamma;
@@ -32,6 +34,8 @@ struct SolverOptions {
   /// the d coordinates of its node, dof-major (size n_dofs * d, d = 1..3).
   std::string mass = "consistent";
   std::vector<double> positions;
+  /// Restitution coefficient of scheme "moreau-jean", in [0, 1] (default 0).
+  std::optional<double> restitution;
 };
 
 /// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components

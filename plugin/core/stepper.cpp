@@ -43,11 +43,15 @@ void Stepper::initialize(const Vector& u, const Vector& v, const Vector& F, doub
   v_ = v;
   F_ = F;
   t_ = t;
+  a_.resize(n);
+  start();
+  initialized_ = true;
+}
+
+void Stepper::start() {
   active_ = boundary_.enforce(u_, F_, {}).active;
   boundary_.project(v_, active_, Vector::Zero(problem_.n_contact()));
-  a_.resize(n);
   solve_acceleration(F_);
-  initialized_ = true;
 }
 
 void Stepper::finish_step(const Vector& F_next) {

@@ -29,9 +29,9 @@ class Stepper {
   Stepper& operator=(const Stepper&) = delete;
 
   /// Starts at time t from displacement u and velocity v under the load F
-  /// (internal coordinates). u_C and v_C are replaced by their nodal boundary
-  /// values; the acceleration solves the reduced equations. Throws InputError
-  /// if u penetrates the obstacle.
+  /// (internal coordinates); start() completes the state (for NBM: u_C and
+  /// v_C replaced by their nodal boundary values, the acceleration of the
+  /// reduced equations). Throws InputError if u penetrates the obstacle.
   void initialize(const Vector& u, const Vector& v, const Vector& F, double t = 0);
   /// Advances by dt under the load F at the new time.
   virtual StepReport step(const Vector& F_next) = 0;
@@ -43,13 +43,17 @@ class Stepper {
   const Vector& v() const { return v_; }
   const Vector& a() const { return a_; }
   const ActiveSet& active() const { return active_; }
-  Vector reactions() const { return boundary_.reactions(u_, F_); }
+  /// Contact force lambda >= 0 per contact node (for NBM, method.md §2).
+  virtual Vector reactions() const { return boundary_.reactions(u_, F_); }
   Vector gaps() const { return boundary_.gaps(u_); }
   Energies energies() const;
 
  protected:
   /// The mass matrix of the scheme (consistent or lumped), for energies.
   virtual const SparseMatrix& mass() const = 0;
+  /// Completes the initial state; by default the NBM one: u_C from the LCP,
+  /// v_C = A v_O, then solve_acceleration.
+  virtual void start();
   /// Solves mass() a = F - K u + G^T mu, G a = 0 for the current active set.
   virtual void solve_acceleration(const Vector& F) = 0;
   /// Completes a step: v_C, a_C from the new active set, time advanced.

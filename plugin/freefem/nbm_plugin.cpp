@@ -4,6 +4,8 @@
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "newmark",
 //         beta = 0.25, gamma = 0.5, fixed = fixedDofs,
 //         mass = "redistributed", positions = xy);   // massless boundary
+//   NBM P(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "moreau-jean",
+//         restitution = 0);                           // the impact-law peer
 //   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
 //   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
@@ -89,7 +91,7 @@ void assign(KN<K>* x, const std::vector<T>& v) {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 7;
+  static const int n_name_param = 8;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -111,6 +113,7 @@ class NbmConstruct : public E_F0mps {
     if (nargs[5]) opt.mass = *GetAny<string*>((*nargs[5])(s));
     if (nargs[6])
       opt.positions = vector_of<double>(GetAny<KN<double>*>((*nargs[6])(s)), "NBM", "positions");
+    if (nargs[7]) opt.restitution = GetAny<double>((*nargs[7])(s));
     nbm::ContactDescription contact;
     contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
     contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
@@ -133,6 +136,7 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"fixed", &typeid(KN<long>*)},
     {"mass", &typeid(string*)},
     {"positions", &typeid(KN<double>*)},
+    {"restitution", &typeid(double)},
 };
 
 class NbmConstructOp : public OneOperator {

@@ -9,6 +9,7 @@
 #include "contact_problem.hpp"
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
+#include "moreau_jean_stepper.hpp"
 #include "newmark_stepper.hpp"
 #include "test_problems.hpp"
 
@@ -37,6 +38,9 @@ struct Simulation {
   void massless(double dt, const Eigen::MatrixXd& positions) {
     problem->make_boundary_massless(nbm::redistributed_mass(*problem, a.M, positions));
     stepper = std::make_unique<nbm::MasslessNewmarkStepper>(*problem, dt);
+  }
+  void moreau_jean(double dt, double restitution) {
+    stepper = std::make_unique<nbm::MoreauJeanStepper>(*problem, dt, restitution);
   }
   nbm::CentralDifferenceStepper& explicit_scheme(double dt) {
     auto cd = std::make_unique<nbm::CentralDifferenceStepper>(*problem, dt);

@@ -62,7 +62,7 @@ nbm_bad_case(dt-zero [=[NBM: dt: 0(\.0*)?, expected a positive finite time step]
 nbm_bad_case(dt-negative [=[NBM: dt: -0\.020*, expected a positive finite time step]=])
 nbm_bad_case(dt-nan [=[NBM: dt: -?nan, expected a positive finite time step]=])
 nbm_bad_case(dt-missing [=[NBM: the time step dt=\.\.\. is required]=])
-nbm_bad_case(scheme-unknown [=[NBM: scheme: "implicit", expected "newmark" or "explicit"]=])
+nbm_bad_case(scheme-unknown [=[NBM: scheme: "implicit", expected "newmark", "explicit" or "moreau-jean"]=])
 nbm_bad_case(beta-zero [=[NBM: beta: 0(\.0*)?, expected 0 < beta <= 1/2]=])
 nbm_bad_case(beta-large [=[NBM: beta: 0\.60*, expected 0 < beta <= 1/2]=])
 nbm_bad_case(gamma-small [=[NBM: gamma: 0\.40*, expected 1/2 <= gamma <= 1]=])

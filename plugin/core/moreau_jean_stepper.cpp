@@ -1,0 +1,84 @@
+#include "moreau_jean_stepper.hpp"
+
+#include <string>
+#include <vector>
+
+#include "errors.hpp"
+#include "lcp.hpp"
+
+namespace nbm {
+
+MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
+                                     double restitution)
+    : Stepper(problem, dt), restitution_(restitution) {
+  if (!(restitution >= 0 && restitution <= 1))
+    throw InputError("restitution: " + std::to_string(restitution) +
+                     ", expected a coefficient in [0, 1]");
+  S_ = make_cholesky_inverse(problem.M() + (0.25 * dt * dt) * problem.K(), "M + dt^2/4 K");
+  W_CC_ = S_->gram(problem.constraint_basis().rightCols(problem.n_contact()));
+  impulse_ = Vector::Zero(problem.n_contact());
+}
+
+void MoreauJeanStepper::start() {
+  const Vector gap = gaps();
+  active_.assign(problem_.n_contact(), false);
+  for (Index k = 0; k < gap.size(); ++k) active_[k] = gap(k) <= 0;
+  impulse_.setZero();
+  solve_acceleration(F_);
+}
+
+void MoreauJeanStepper::solve_acceleration(const Vector& F) {
+  // Reported only (the scheme is first order in velocity): M a = F - K u.
+  a_ = F - problem_.K() * u_;
+  make_cholesky_inverse(problem_.M(), "M")->solve_in_place(a_);
+}
+
+StepReport MoreauJeanStepper::step(const Vector& F_next) {
+  if (!initialized_) throw InputError("step: the stepper has no initial state");
+  const double dt = dt_;
+  const auto& c = problem_.contact_index();
+  const Index nc = problem_.n_contact();
+  // Free velocity (theta = 1/2, load at the midpoint).
+  Vector v_free = problem_.M() * v_ + dt * (0.5 * (F_ + F_next) - problem_.K() * u_) -
+                  (0.25 * dt * dt) * (problem_.K() * v_);
+  S_->solve_in_place(v_free);
+
+  // Contacts predicted closed at mid-step (the gap rate is -v_C), and
+  // Newton's law on them in the separation velocities w = -v_C.
+  const Vector gap = gaps();
+  std::vector<Index> closed;
+  for (Index k = 0; k < nc; ++k)
+    if (gap(k) - 0.5 * dt * v_(c[k]) <= 0) closed.push_back(k);
+  impulse_.setZero();
+  Vector v_next = v_free;
+  if (!closed.empty()) {
+    const Index m = static_cast<Index>(closed.size());
+    Matrix W(m, m);
+    Vector q(m);
+    for (Index a = 0; a < m; ++a) {
+      // w+ + e w = (-v_free_C + W p) + e (-v_C)
+      q(a) = -v_free(c[closed[a]]) - restitution_ * v_(c[closed[a]]);
+      for (Index b = 0; b < m; ++b) W(a, b) = W_CC_(closed[a], closed[b]);
+    }
+    const LcpResult lcp = LcpSolver::solve(W, q);
+    Vector correction = Vector::Zero(v_.size());
+    for (Index a = 0; a < m; ++a) {
+      impulse_(closed[a]) = lcp.z(a);
+      correction(c[closed[a]]) = -lcp.z(a);
+    }
+    S_->solve_in_place(correction);
+    v_next += correction;
+  }
+  u_ += (0.5 * dt) * (v_ + v_next);
+  a_ = (v_next - v_) / dt;
+  v_ = v_next;
+  F_ = F_next;
+  t_ += dt;
+  const Vector gap_next = gaps();
+  for (Index k = 0; k < nc; ++k) active_[k] = impulse_(k) > 0 || gap_next(k) <= 0;
+  StepReport report;
+  report.active_set_iterations = 1;
+  return report;
+}
+
+}  // namespace nbm

@@ -1,0 +1,48 @@
+// Moreau-Jean time stepping with a Newton impact law: the classical peer of
+// NBM (reference paper, introduction), on the same FE problem and sharing
+// its factorization and complementarity solver. Contact dofs are ordinary
+// unknowns here (not slaved to the interior).
+//
+// theta = 1/2 on the velocity (method of Jean 1999):
+//   (M + dt^2/4 K) v+ = M v + dt (F - K u) - dt^2/4 K v - E_C p,
+//   u+ = u + dt (v + v+)/2,
+// the same matrix as average-acceleration Newmark (beta = 1/4). For the
+// contacts predicted closed, gap(u) - dt/2 gap_rate <= 0, the impulses p
+// and the separation velocities w = -v_C solve the LCP of Newton's law
+//   0 <= w+ + e w  _|_  p >= 0   (e: restitution coefficient in [0, 1]),
+// with the matrix W_CC = E_C^T (M + dt^2/4 K)^-1 E_C formed once.
+// Impenetrability holds at the velocity level only: positions may
+// penetrate by O(dt v); contacts stick after impact for e = 0.
+#pragma once
+
+#include <memory>
+
+#include "spd_inverse.hpp"
+#include "stepper.hpp"
+
+namespace nbm {
+
+class MoreauJeanStepper final : public Stepper {
+ public:
+  /// Throws InputError unless 0 <= restitution <= 1, NumericalError if
+  /// M + dt^2/4 K is not positive definite.
+  MoreauJeanStepper(const ContactProblem& problem, double dt, double restitution);
+
+  StepReport step(const Vector& F_next) override;
+  /// Average contact force over the last step, p/dt.
+  Vector reactions() const override { return impulse_ / dt_; }
+
+ protected:
+  const SparseMatrix& mass() const override { return problem_.M(); }
+  /// The given state is taken as it is (no nodal boundary relation).
+  void start() override;
+  void solve_acceleration(const Vector& F) override;
+
+ private:
+  double restitution_;
+  std::unique_ptr<SpdInverse> S_;
+  Matrix W_CC_;
+  Vector impulse_;
+};
+
+}  // namespace nbm
