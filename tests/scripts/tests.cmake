@@ -68,3 +68,9 @@ add_test(NAME script.plate-free-flight-P2
           -order 2 -E 5000 -nu 0.2 -rho 2 -width 0.8 -height 0.3 -lc 0.05 -dt 5e-4
   WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
 set_tests_properties(script.plate-free-flight-P1 script.plate-free-flight-P2 PROPERTIES TIMEOUT 300 LABELS script)
+
+# Chattering counts: the metrics script on a known history, and the bar's
+# impacts (exactly one contact interval each, both mass treatments).
+add_test(NAME script.chattering
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/chattering.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR})
+set_tests_properties(script.chattering PROPERTIES TIMEOUT 300 LABELS script)
