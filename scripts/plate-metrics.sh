@@ -3,14 +3,15 @@
 # written by plate-setup.idp), printed as one comma-separated line:
 #   max_penetration, energy_drift_final, energy_drift_max (relative to mgh0),
 #   mean and max contact intervals per node per impact, impacts,
-#   L2(0,T) distances of y_com and u_probe to the reference
-#   plate-metrics.sh <run.csv> <run-contact.csv> <reference.csv> <mgh0>
+#   L2(0,T) distances of y_com and u_probe to the reference, then the same
+#   over (0, t_window) (the first bounce, before trajectories part)
+#   plate-metrics.sh <run.csv> <run-contact.csv> <reference.csv> <mgh0> <t_window>
 # An impact is a maximal run of steps with some node in contact; within it,
 # each node that touched counts its contact intervals (chattering: > 1). The
 # reference is interpolated linearly at the run's times.
 set -eu
-run=$1 contact=$2 ref=$3 mgh0=$4
-l2=$(awk -F, '
+run=$1 contact=$2 ref=$3 mgh0=$4 tw=$5
+l2=$(awk -F, -v tw="$tw" '
   FNR == 1 { next }
   FILENAME == ARGV[1] { rt[++nr] = $1; ry[nr] = $2; ru[nr] = $4; next }
   {
@@ -20,10 +21,14 @@ l2=$(awk -F, '
     w = (rt[j + 1] > rt[j]) ? (t - rt[j]) / (rt[j + 1] - rt[j]) : 0
     if (w < 0) w = 0; if (w > 1) w = 1
     dy = $2 - (ry[j] + w * (ry[j + 1] - ry[j])); du = $4 - (ru[j] + w * (ru[j + 1] - ru[j]))
-    if (FNR > 2) { h = t - tp; sy += h * (dy * dy + dyp * dyp) / 2; su += h * (du * du + dup * dup) / 2 }
+    if (FNR > 2) {
+      h = t - tp; iy = h * (dy * dy + dyp * dyp) / 2; iu = h * (du * du + dup * dup) / 2
+      sy += iy; su += iu
+      if (t <= tw) { wy += iy; wu += iu }
+    }
     tp = t; dyp = dy; dup = du
   }
-  END { printf "%.6g,%.6g", sqrt(sy), sqrt(su) }' "$ref" "$run")
+  END { printf "%.6g,%.6g,%.6g,%.6g", sqrt(sy), sqrt(su), sqrt(wy), sqrt(wu) }' "$ref" "$run")
 energy=$(awk -F, -v m="$mgh0" '
   FNR == 1 { next }
   { if (FNR == 2) e0 = $11; d = ($11 - e0) / m; if (d < 0) d = -d; if (d > dmax) dmax = d
