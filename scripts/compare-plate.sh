@@ -9,7 +9,8 @@
 # (mass redistribution), Moreau-Jean with e = 0, Nitsche theta = 1, 0, -1,
 # penalty. Reference: NBM with the massless boundary on lc/4 and dt/4 (the
 # methods converge to the same solution; the agreement test checks it for
-# Nitsche). Needs a build (scripts/build.sh). Writes, in the -out folder:
+# Nitsche). Installs what is missing and builds first (both idempotent).
+# Writes, in the -out folder:
 #   table.csv, table.md     per method: max penetration, energy drift, contact
 #                           intervals per node per impact (chattering),
 #                           L2 distances of y_com and u_probe to the reference
@@ -18,7 +19,8 @@
 #   overlay.png             u_probe, y_com, total energy, contact force
 #   <method>.csv, ...       the runs themselves
 # -docs also copies table.md and overlay.png to docs/compare-plate.{md,png}
-# (the README's table and figure).
+# and the NBM run's snapshots to docs/bouncing-plate-snapshots.png (the
+# README's table and figures).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 lc=0.058 dt=2.5e-4 T=1 out="$repo/out/compare-plate" docs=0
@@ -34,6 +36,8 @@ while [ $# -gt 0 ]; do
     *) extra+=("$1"); shift ;;
   esac
 done
+bash "$repo/scripts/install-deps.sh" >/dev/null
+bash "$repo/scripts/build.sh" >/dev/null
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
 cd "$out"
@@ -53,7 +57,7 @@ run() {  # run <name> <script> [args...]: runs, times, keeps the summary line
 methods=(nbm nbm-massless moreau-jean nitsche-theta1 nitsche-theta0 nitsche-theta-1 penalty)
 labels=("NBM (paper)" "NBM massless boundary" "Moreau-Jean e = 0" "Nitsche theta = 1"
         "Nitsche theta = 0" "Nitsche theta = -1" "penalty")  # no commas: CSV fields
-run nbm bouncing-plate.edp
+run nbm bouncing-plate.edp -snapshots 6
 run nbm-massless bouncing-plate.edp -mass redistributed
 run moreau-jean bouncing-plate.edp -scheme moreau-jean -restitution 0
 run nitsche-theta1 bouncing-plate-nitsche.edp -theta 1
@@ -114,5 +118,6 @@ echo "compare-plate: wrote $out/table.md, table.csv, overlay.png"
 if [ $docs = 1 ]; then
   cp table.md "$repo/docs/compare-plate.md"
   cp overlay.png "$repo/docs/compare-plate.png"
+  cp nbm-snapshots.png "$repo/docs/bouncing-plate-snapshots.png"
   echo "compare-plate: copied the table and the figure to $repo/docs"
 fi
