@@ -83,6 +83,8 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
                            " is not positive definite (the matrix is not a P-matrix)");
     r.w.noalias() = q + A * r.z;
     for (Index i : F) r.w(i) = 0.0;  // exact on the free set by construction
+    if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
+      throw NumericalError("LCP: the solution overflows; the data are too badly scaled");
 
     // Round-off tolerances scale with the magnitudes of the current solution.
     const double z_scale = r.z.cwiseAbs().maxCoeff();

@@ -1,0 +1,138 @@
+#!/usr/bin/env bash
+# Runs the core benchmarks and writes bench/RESULTS.md (ratios NBM / plain
+# measured side by side, fitted scaling exponents, peak memory) and
+# bench/scaling.png (log-log step time against dofs).
+#
+#   bash bench/run.sh                 P1 and P2, 1e3, 1e4 and 1e5 dofs (about 10 minutes)
+#   bash bench/run.sh "1000 10000"    other sizes (1000000 takes hours: NBM setup)
+#
+# Every benchmark runs in its own process so that its peak resident memory
+# (VmHWM) is its own. Raw results: out/bench/*.csv.
+set -eu
+repo=$(cd "$(dirname "$0")/.." && pwd)
+sizes=${1:-"1000 10000 100000"}
+bash "$repo/scripts/install-deps.sh" >/dev/null
+bash "$repo/scripts/build.sh" >/dev/null
+bench="$repo/build/bench/nbm_bench"
+work="$repo/out/bench"
+mkdir -p "$work"
+raw="$work/raw.csv"
+echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps" > "$raw"
+load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
+
+names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeFlight
+       NbmNewmarkStepBouncing NbmMasslessStepFreeFlight NbmMasslessStepBouncing
+       NbmExplicitStepFreeFlight NbmExplicitStepBouncing NbmSetup)
+for dofs in $sizes; do
+  for order in 1 2; do
+    for name in "${names[@]}"; do
+      out="$work/$name-$order-$dofs.csv"
+      "$bench" --benchmark_filter="^BM_$name/order:$order/dofs:$dofs(/|\$)" \
+        --benchmark_format=csv --benchmark_min_time=0.5 > "$out" 2>/dev/null
+      # Columns of Google Benchmark's CSV: name,iterations,real_time,cpu_time,
+      # time_unit,...,then the counters in alphabetical order.
+      awk -F, -v n="$name" -v o="$order" '
+        /^name,/ { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
+        /^"BM_/ {
+          t = $col["real_time"]; u = $col["time_unit"]
+          if (u == "ms") t *= 1000; else if (u == "ns") t /= 1000; else if (u == "s") t *= 1e6
+          printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s\n", n, o, $col["dofs"], $col["contacts"], t,
+                 $col["held_MB"], ("solves_per_step" in col) ? $col["solves_per_step"] : "",
+                 ("switch_steps" in col) ? $col["switch_steps"] : ""
+        }' "$out" >> "$raw"
+    done
+    echo "bench: order $order, $dofs dofs done"
+  done
+done
+
+# Ratios per (order, dofs), exponents per benchmark, the report.
+report="$repo/bench/RESULTS.md"
+{
+  echo "# Benchmark results"
+  echo
+  echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
+  echo "($(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo),"
+  echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')). Plane-strain plate"
+  echo "Load average when the run started: $load (on 2 cores, anything above about 0.5 means the ratios"
+  echo "below are perturbed by other work; rerun on a quiet machine)."
+  echo "(bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
+  echo "implicit dt = 2e-4, bouncing runs restart every 250 steps (fall, impact, rebound); explicit"
+  echo "dt = half the critical step. Times are wall-clock per step (per factorization or setup for"
+  echo "those rows); every benchmark ran in its own process; memory is what its solver objects hold"
+  echo "(heap growth after the plate was assembled, glibc mallinfo2). Raw data: out/bench/raw.csv."
+  echo
+  echo "## Ratios NBM / plain (same matrices, same factorization library, same run)"
+  echo
+  echo "| order | dofs | contact nodes | implicit bouncing | implicit free flight | massless bouncing | massless free flight | setup / factorization | explicit bouncing | explicit free flight | memory (NBM bouncing / plain) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { k = $2 "," $3; t[$1, k] = $5; m[$1, k] = $6; c[k] = ($4 > c[k]) ? $4 : c[k]; d[k] = $3; o[k] = $2; keys[k] = 1 }
+    END {
+      n = 0; for (k in keys) list[++n] = k
+      for (i = 1; i <= n; i++) for (j = i + 1; j <= n; j++)
+        if (o[list[j]] < o[list[i]] || (o[list[j]] == o[list[i]] && d[list[j]] + 0 < d[list[i]] + 0)) { x = list[i]; list[i] = list[j]; list[j] = x }
+      for (i = 1; i <= n; i++) {
+        k = list[i]; p = t["PlainNewmarkStep", k]; e = t["PlainExplicitStep", k]
+        printf "| P%s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.1f | %.2f | %.2f | %.2f |\n", o[k], d[k], c[k],
+          t["NbmNewmarkStepBouncing", k] / p, t["NbmNewmarkStepFreeFlight", k] / p,
+          t["NbmMasslessStepBouncing", k] / p, t["NbmMasslessStepFreeFlight", k] / p,
+          t["NbmSetup", k] / t["PlainFactorization", k],
+          t["NbmExplicitStepBouncing", k] / e, t["NbmExplicitStepFreeFlight", k] / e,
+          m["NbmNewmarkStepBouncing", k] / m["PlainNewmarkStep", k]
+      }
+    }' "$raw"
+  echo
+  echo "## Targets of the benchmark issue, at the largest size run (P1)"
+  echo
+  awk -F, 'NR > 1 && $2 == 1 { if ($3 + 0 > big) big = $3 + 0; t[$1, $3] = $5; m[$1, $3] = $6 }
+    END {
+      k = big; p = t["PlainNewmarkStep", k]; e = t["PlainExplicitStep", k]
+      row("implicit NBM step / plain, bouncing", t["NbmNewmarkStepBouncing", k] / p, 1.3)
+      row("implicit NBM step / plain, free flight", t["NbmNewmarkStepFreeFlight", k] / p, 1.1)
+      row("massless-boundary NBM step / plain, bouncing", t["NbmMasslessStepBouncing", k] / p, 1.3)
+      row("massless-boundary NBM step / plain, free flight", t["NbmMasslessStepFreeFlight", k] / p, 1.1)
+      row("NBM setup / plain factorization", t["NbmSetup", k] / t["PlainFactorization", k], 5)
+      row("explicit NBM step / plain explicit step (bouncing)", t["NbmExplicitStepBouncing", k] / e, 1.5)
+      row("NBM memory / plain (implicit, bouncing)", m["NbmNewmarkStepBouncing", k] / m["PlainNewmarkStep", k], 2)
+      printf "\n(%d dofs.)\n", k
+    }
+    function row(what, value, target) {
+      printf "- %s: %.2f (target <= %g): %s\n", what, value, target,
+             value <= target ? "met" : sprintf("missed by a factor %.2f", value / target)
+    }' "$raw"
+  cat "$repo/bench/why.md"
+  echo
+  echo "## Times"
+  echo
+  echo "| benchmark | order | dofs | time per step (us) | memory held (MB) | solves per step | steps with an active-set change |"
+  echo "|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { printf "| %s | P%s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $7, $8 }' "$raw"
+  echo
+  echo "## Scaling: fitted exponent of time against dofs (least squares over the sizes run)"
+  echo
+  echo "| benchmark | P1 | P2 |"
+  echo "|---|---|---|"
+  awk -F, 'NR > 1 { x = log($3); y = log($5); k = $1 SUBSEP $2; n[k]++; sx[k] += x; sy[k] += y; sxx[k] += x * x; sxy[k] += x * y; names[$1] = 1 }
+    END {
+      for (b in names) {
+        line = "| " b
+        for (o = 1; o <= 2; o++) {
+          k = b SUBSEP o
+          line = line " | " ((n[k] > 1) ? sprintf("%.2f", (n[k] * sxy[k] - sx[k] * sy[k]) / (n[k] * sxx[k] - sx[k] * sx[k])) : "-")
+        }
+        print line " |"
+      }
+    }' "$raw" | sort
+} > "$report.tmp"
+
+gnuplot <<GP
+set datafile separator ','
+set terminal pngcairo size 1100,700 font ',10'
+set output '$repo/bench/scaling.png'
+set logscale xy; set grid; set key top left
+set xlabel 'dofs'; set ylabel 'time per step (us)'
+set title 'Step time against problem size (P1), bench/run.sh'
+plot for [b in "PlainNewmarkStep NbmNewmarkStepBouncing NbmNewmarkStepFreeFlight NbmMasslessStepBouncing PlainExplicitStep NbmExplicitStepBouncing"] \
+  '< awk -F, -v b='.b.' "\\\$1 == b && \\\$2 == 1" $raw' using 3:5 with linespoints lw 2 title b
+GP
+mv "$report.tmp" "$report"
+echo "bench: wrote $report and bench/scaling.png"
