@@ -168,6 +168,10 @@ void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
   for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
     if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
   impl_->stepper->initialize(p.to_internal(uu), p.to_internal(vv), p.to_internal(FF), t);
+  const Stepper& st = *impl_->stepper;  // finite data can still overflow (M^-1 F)
+  if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
+    throw NumericalError("initialization: the state is not finite (overflow); the data are too "
+                         "badly scaled");
   impl_->steps = impl_->fallbacks = 0;
   impl_->publish(u, v);
 }
@@ -188,6 +192,10 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
     throw InputError(
         "u, v: changed since the last step; to restart from a new state, initialize again");
   const StepReport r = impl_->stepper->step(p.to_internal(FF));
+  const Stepper& st = *impl_->stepper;  // finite data can still overflow (beta dt^2 -> 0)
+  if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
+    throw NumericalError("step: the new state is not finite (overflow); dt, beta or the data "
+                         "are too badly scaled");
   ++impl_->steps;
   if (r.fallback) ++impl_->fallbacks;
   impl_->publish(u, v);
