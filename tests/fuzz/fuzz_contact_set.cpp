@@ -24,9 +24,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int n_nodes = fdp.ConsumeIntegralInRange<int>(0, 10);
   // Mostly a consistent dim; sometimes a dof count that is not a multiple.
   const int dim = fdp.ConsumeIntegralInRange<int>(1, 4);
-  const int extra_dofs = fdp.ConsumeIntegralInRange<int>(0, 7) == 0
-                             ? fdp.ConsumeIntegralInRange<int>(-2, 2)
-                             : 0;
+  const int extra_dofs =
+      fdp.ConsumeIntegralInRange<int>(0, 7) == 0 ? fdp.ConsumeIntegralInRange<int>(-2, 2) : 0;
   const int n_entries = std::max(0, n_nodes * dim + extra_dofs);
 
   // Dofs: mostly a random injection into [0, n_dofs), sometimes anything.
@@ -81,8 +80,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   nbm::Vector gaps(gap_count);
   const double gap_scale = nbm_fuzz::pow10_in(fdp, -300, 300);
   for (int k = 0; k < gap_count; ++k)
-    gaps(k) = fdp.ConsumeIntegralInRange<int>(0, 15) == 0 ? nbm_fuzz::special(fdp)
-                                                          : nbm_fuzz::uniform(fdp, -1, 1) * gap_scale;
+    gaps(k) = fdp.ConsumeIntegralInRange<int>(0, 15) == 0
+                  ? nbm_fuzz::special(fdp)
+                  : nbm_fuzz::uniform(fdp, -1, 1) * gap_scale;
 
   std::vector<nbm::Index> fixed;
   const int n_fixed = fdp.ConsumeIntegralInRange<int>(0, 4);
@@ -111,7 +111,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (fixed_set.count(dof)) fail("dof %ld is fixed", (long)dof);
         nn += set.normal(k, j) * set.normal(k, j);
       }
-      if (!(std::abs(std::sqrt(nn) - 1) <= 1e-10)) fail("|n| = %.17g at node %ld", std::sqrt(nn), (long)k);
+      if (!(std::abs(std::sqrt(nn) - 1) <= 1e-10))
+        fail("|n| = %.17g at node %ld", std::sqrt(nn), (long)k);
       if (!std::isfinite(set.gaps()(k))) fail("non-finite gap accepted");
     }
     for (nbm::Index f : fixed)
@@ -120,7 +121,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // Rotation: orthogonal, first column of each node block = n / |n|.
     const nbm::Matrix T(set.rotation(n_dofs));
     if (T.rows() != n_dofs || T.cols() != n_dofs) fail("rotation size");
-    const double orth = (T.transpose() * T - nbm::Matrix::Identity(n_dofs, n_dofs)).cwiseAbs().maxCoeff();
+    const double orth =
+        (T.transpose() * T - nbm::Matrix::Identity(n_dofs, n_dofs)).cwiseAbs().maxCoeff();
     if (!(orth <= 1e-13)) fail("rotation not orthogonal: |T'T - I| = %g", orth);
     for (nbm::Index k = 0; k < set.size(); ++k) {
       double nn = 0;
@@ -145,7 +147,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (nbm::Index k = 0; k < set.size(); ++k) {
       double expected = 0;
       for (int j = 0; j < d; ++j) expected += set.normal(k, j) * probe(set.dof(k, j));
-      if (!(std::abs(un(k) - expected) <= 1e-14 * d)) fail("normal displacement of node %ld", (long)k);
+      if (!(std::abs(un(k) - expected) <= 1e-14 * d))
+        fail("normal displacement of node %ld", (long)k);
     }
   });
   return 0;

@@ -27,13 +27,12 @@
 //
 // Corpus: lcp-overflow (A = 8.7e-26 I, q = (-1e300, 0)) made solve() return
 // z = inf as a "solution"; it now throws nbm::NumericalError (lcp.cpp).
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <vector>
-
-#include <Eigen/Eigenvalues>
 
 #include "fuzz_common.hpp"
 #include "lcp.hpp"
@@ -83,7 +82,8 @@ Matrix random_spd(FuzzedDataProvider& fdp, Index n) {
       const Matrix Q = random_orthogonal(fdp, n);
       const double decades = fdp.ConsumeFloatingPointInRange<double>(0, 16);
       Vector lambda(n);
-      for (Index i = 0; i < n; ++i) lambda(i) = std::pow(10.0, -decades * nbm_fuzz::uniform(fdp, 0, 1));
+      for (Index i = 0; i < n; ++i)
+        lambda(i) = std::pow(10.0, -decades * nbm_fuzz::uniform(fdp, 0, 1));
       A = Q * lambda.asDiagonal() * Q.transpose();
       break;
     }
@@ -136,7 +136,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (q_mode == 1) {  // degenerate: q = -A z* for a z* with zeros (w*_i = z*_i = 0)
     Vector zs(n);
-    for (Index i = 0; i < n; ++i) zs(i) = fdp.ConsumeBool() ? 0.0 : nbm_fuzz::uniform(fdp, 0, 1) * q_scale;
+    for (Index i = 0; i < n; ++i)
+      zs(i) = fdp.ConsumeBool() ? 0.0 : nbm_fuzz::uniform(fdp, 0, 1) * q_scale;
     q = -(A * zs);
   } else if (q_mode == 2) {  // all positive (solution z = 0) or all negative
     const double sign = fdp.ConsumeBool() ? 1.0 : -1.0;
@@ -162,15 +163,29 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       corrupted = !std::isfinite(x);
       break;
     }
-    case 1: q(ci) = nbm_fuzz::special(fdp); corrupted = !std::isfinite(q(ci)); break;
-    case 2:
-      if (ci != cj) A(ci, cj) += 1e-6 * std::max(std::abs(A(ci, cj)), A.cwiseAbs().maxCoeff());
-      else corrupted = false;
+    case 1:
+      q(ci) = nbm_fuzz::special(fdp);
+      corrupted = !std::isfinite(q(ci));
       break;
-    case 3: guess.assign(n + 1, true); break;
-    case 4: q.conservativeResize(n + 1); q(n) = 1; break;
-    case 5: A.conservativeResize(n, n + 1); A.col(n).setZero(); break;
-    default: corrupted = false;
+    case 2:
+      if (ci != cj)
+        A(ci, cj) += 1e-6 * std::max(std::abs(A(ci, cj)), A.cwiseAbs().maxCoeff());
+      else
+        corrupted = false;
+      break;
+    case 3:
+      guess.assign(n + 1, true);
+      break;
+    case 4:
+      q.conservativeResize(n + 1);
+      q(n) = 1;
+      break;
+    case 5:
+      A.conservativeResize(n, n + 1);
+      A.col(n).setZero();
+      break;
+    default:
+      corrupted = false;
   }
   // Finite extreme values are valid input (A stays symmetric, possibly not
   // positive definite in floating point: then cond2 is infinite below).
@@ -221,6 +236,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const double res = nbm::LcpSolver::residual(A, q, r.z);
   const double tol = 100 * std::pow(double(n), 2.5) * kEps * std::max(1.0, cond);
   if (!(res <= tol) && tol < 1)
-    fail("residual %g > tolerance %g (n = %ld, cond %g, pivots %d)", res, tol, (long)n, cond, r.pivots);
+    fail("residual %g > tolerance %g (n = %ld, cond %g, pivots %d)", res, tol, (long)n, cond,
+         r.pivots);
   return 0;
 }

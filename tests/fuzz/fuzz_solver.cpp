@@ -9,13 +9,22 @@
 //
 // Properties: no crash, no hang, exceptions only nbm::InputError and
 // nbm::NumericalError; after the initialisation and after every successful
-// step of the NBM schemes (newmark, both mass treatments, and explicit) the
-// gaps satisfy gap_k >= -1e-9 * scale, and the state (u, v, gaps; unless an
-// extreme value was injected also reactions, energies, acceleration) is finite. `scale` is the displacement scale of the
-// step: max(|g|, |u|, dt |v|, dt^2 |a| before and after the step, and the
-// displacement the load alone produces in one step) -- see StateScale below
-// for why |u| and |g| alone are not enough.
-// Moreau-Jean penetrates by design (O(dt v)): only finiteness is checked.
+// step the state (u, v, gaps; unless an extreme value was injected also the
+// reactions, energies and acceleration) is finite, and for the NBM schemes
+// (newmark with both mass treatments, explicit) gap_k >= -1e-9 * scale, where
+// `scale` is the displacement scale of the step: max(|g|, |u|, dt |v|,
+// dt^2 |a| before and after the step, and the displacement the load alone
+// produces in one step) -- see StateScale below for why |u| and |g| alone
+// are not enough. Moreau-Jean penetrates by design (O(dt v)): only
+// finiteness is checked for it.
+//
+// Corpus: newmark-beta-denormal (beta = 4.9e-324: beta dt^2 underflows to 0
+// and the step returned v = -inf, NaN without an error; nbm::Solver now throws
+// NumericalError, solver.cpp); penetration-at-rest and massless-large-load
+// (round-off of the scale discussed in StateScale); gap-1e300 (the energies
+// of a state of 1e284 overflow: not checked after extreme values).
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -23,9 +32,6 @@
 #include <numeric>
 #include <string>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include "fuzz_common.hpp"
 #include "solver.hpp"
@@ -112,7 +118,8 @@ bool all_finite(const std::vector<double>& x) {
 
 // Smallest eigenvalue of A over the dofs that are neither listed in `fixed`
 // nor tgv-fixed (|diagonal| >= 1e29 in K or M); +inf if not positive.
-double lambda_min_free(const Dense& A, const Dense& K, const Dense& M, const std::vector<long>& fixed) {
+double lambda_min_free(const Dense& A, const Dense& K, const Dense& M,
+                       const std::vector<long>& fixed) {
   std::vector<int> keep;
   for (int i = 0; i < A.rows(); ++i)
     if (std::find(fixed.begin(), fixed.end(), i) == fixed.end() && std::abs(K(i, i)) < 1e29 &&
@@ -140,8 +147,8 @@ double lambda_min_free(const Dense& A, const Dense& K, const Dense& M, const std
 // round-off eps |F| / k_CC (corpus: massless-large-load).
 struct StateScale {
   double dt, load_factor;
-  double operator()(const nbm::Solver& S, const std::vector<double>& u, const std::vector<double>& v,
-                    const std::vector<double>& F) const {
+  double operator()(const nbm::Solver& S, const std::vector<double>& u,
+                    const std::vector<double>& v, const std::vector<double>& F) const {
     const double a = max_abs(S.acceleration());
     return std::max({max_abs(u), dt * max_abs(v), dt * dt * a, load_factor * max_abs(F)});
   }
@@ -192,22 +199,28 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return nbm_fuzz::special(fdp);
   };
   // One broken input at most (0: none).
-  const int broken = fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 14) : 0;
+  const int broken =
+      fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 14) : 0;
 
   const double sK = nbm_fuzz::pow10_in(fdp, -6, 6), sM = nbm_fuzz::pow10_in(fdp, -6, 6);
   const double sg = nbm_fuzz::pow10_in(fdp, -6, 6);
   const double T0 = std::sqrt(sM / sK);  // time scale of the problem
 
   Dense K = sK * random_spd(fdp, n, false);
-  Dense M = fdp.ConsumeIntegralInRange<int>(0, 4) == 0 ? sM * random_spd(fdp, n, true)
-                                                       : sM * kron_identity(random_mass(fdp, nodes), d);
-  if (broken == 1) K(fdp.ConsumeIntegralInRange<int>(0, n - 1), fdp.ConsumeIntegralInRange<int>(0, n - 1)) = special();
-  if (broken == 2) M(fdp.ConsumeIntegralInRange<int>(0, n - 1), 0) *= 1 + 1e-6;  // non-symmetric (maybe)
+  Dense M = fdp.ConsumeIntegralInRange<int>(0, 4) == 0
+                ? sM * random_spd(fdp, n, true)
+                : sM * kron_identity(random_mass(fdp, nodes), d);
+  if (broken == 1)
+    K(fdp.ConsumeIntegralInRange<int>(0, n - 1), fdp.ConsumeIntegralInRange<int>(0, n - 1)) =
+        special();
+  if (broken == 2)
+    M(fdp.ConsumeIntegralInRange<int>(0, n - 1), 0) *= 1 + 1e-6;  // non-symmetric (maybe)
 
   // Contact nodes: distinct nodes, dofs node*d + c.
   std::vector<int> order(nodes);
   std::iota(order.begin(), order.end(), 0);
-  for (int i = nodes - 1; i > 0; --i) std::swap(order[i], order[fdp.ConsumeIntegralInRange<int>(0, i)]);
+  for (int i = nodes - 1; i > 0; --i)
+    std::swap(order[i], order[fdp.ConsumeIntegralInRange<int>(0, i)]);
   const int nc = fdp.ConsumeIntegralInRange<int>(1, nodes);
   nbm::ContactDescription contact;
   for (int k = 0; k < nc; ++k) {
@@ -216,7 +229,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     double nn = 0;
     const bool axis = fdp.ConsumeIntegralInRange<int>(0, 2) == 0;
     for (int c = 0; c < d; ++c) {
-      normal[c] = axis ? (c == 0 ? (fdp.ConsumeBool() ? 1.0 : -1.0) : 0.0) : nbm_fuzz::uniform(fdp, -1, 1);
+      normal[c] =
+          axis ? (c == 0 ? (fdp.ConsumeBool() ? 1.0 : -1.0) : 0.0) : nbm_fuzz::uniform(fdp, -1, 1);
       nn += normal[c] * normal[c];
     }
     if (!(nn > 1e-6)) normal.assign(d, 0), normal[0] = 1, nn = 1;
@@ -228,17 +242,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     contact.gaps.push_back(gap_kind == 0 ? 0.0 : sg * nbm_fuzz::uniform(fdp, 0, 1));
   }
   if (broken == 3) contact.gaps[fdp.ConsumeIntegralInRange<int>(0, nc - 1)] = special();
-  if (broken == 4) contact.normals[fdp.ConsumeIntegralInRange<std::size_t>(0, contact.normals.size() - 1)] *= 1 + 1e-6;
-  if (broken == 5) contact.dofs[fdp.ConsumeIntegralInRange<std::size_t>(0, contact.dofs.size() - 1)] = fdp.ConsumeIntegralInRange<long>(-1, n);
+  if (broken == 4)
+    contact.normals[fdp.ConsumeIntegralInRange<std::size_t>(0, contact.normals.size() - 1)] *=
+        1 + 1e-6;
+  if (broken == 5)
+    contact.dofs[fdp.ConsumeIntegralInRange<std::size_t>(0, contact.dofs.size() - 1)] =
+        fdp.ConsumeIntegralInRange<long>(-1, n);
 
   // Dirichlet dofs: `fixed` and/or a tgv diagonal, away from the contact
   // nodes unless broken.
   std::vector<long> free_dofs;
   for (int k = nc; k < nodes; ++k)
     for (int c = 0; c < d; ++c) free_dofs.push_back(order[k] * d + c);
-  const int n_fixed = fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 3) : 0;
+  const int n_fixed =
+      fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 3) : 0;
   for (int f = 0; f < n_fixed && !free_dofs.empty(); ++f)
-    opt.fixed.push_back(free_dofs[fdp.ConsumeIntegralInRange<std::size_t>(0, free_dofs.size() - 1)]);
+    opt.fixed.push_back(
+        free_dofs[fdp.ConsumeIntegralInRange<std::size_t>(0, free_dofs.size() - 1)]);
   if (broken == 6) opt.fixed.push_back(contact.dofs[0]);
   if (fdp.ConsumeIntegralInRange<int>(0, 7) == 0 && !free_dofs.empty()) {
     const long t = free_dofs[fdp.ConsumeIntegralInRange<std::size_t>(0, free_dofs.size() - 1)];
@@ -251,12 +271,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (fdp.ConsumeBool()) opt.gamma = nbm_fuzz::uniform(fdp, 0.5, 1);
     if (broken == 7) opt.beta = fdp.ConsumeBool() ? special() : 0.75;
   }
-  if (opt.scheme == "moreau-jean" && fdp.ConsumeBool()) opt.restitution = nbm_fuzz::uniform(fdp, 0, 1);
+  if (opt.scheme == "moreau-jean" && fdp.ConsumeBool())
+    opt.restitution = nbm_fuzz::uniform(fdp, 0, 1);
   if (broken == 8) opt.restitution = fdp.ConsumeBool() ? special() : 1.5;
   if (broken == 9) opt.scheme = "central";
   if (broken == 10) opt.mass = "lumped";
   if (redistributed || broken == 11) {
-    const int pdim = fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 3) : d;
+    const int pdim =
+        fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 3) : d;
     std::vector<double> node_pos(static_cast<std::size_t>(nodes) * pdim);
     const bool grid = fdp.ConsumeIntegralInRange<int>(0, 3) == 0;  // aligned nodes
     for (std::size_t i = 0; i < node_pos.size(); ++i)
@@ -299,7 +321,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (const auto& e : x) std::fprintf(stderr, " %.17g", double(e));
       std::fputc('\n', stderr);
     };
-    std::fprintf(stderr, "n = %d (d = %d), scheme %s, mass %s, dt = %.17g, beta %.17g, gamma %.17g\n", n, d,
+    std::fprintf(stderr,
+                 "n = %d (d = %d), scheme %s, mass %s, dt = %.17g, beta %.17g, gamma %.17g\n", n, d,
                  opt.scheme.c_str(), opt.mass.c_str(), opt.dt, opt.beta.value_or(-1),
                  opt.gamma.value_or(-1));
     for (const auto& [name, A] : {std::pair{"K", &K}, {"M", &M}}) {
@@ -314,13 +337,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     vec("u", u), vec("v", v), vec("F", F);
   };
   std::unique_ptr<nbm::Solver> S;
-  if (!nbm_fuzz::accepted([&] { S = std::make_unique<nbm::Solver>(Mc, Kc, contact, opt); })) return 0;
+  if (!nbm_fuzz::accepted([&] { S = std::make_unique<nbm::Solver>(Mc, Kc, contact, opt); }))
+    return 0;
   if (S->n_dofs() != n || S->n_contact() != nc) fail("sizes %ld, %ld", S->n_dofs(), S->n_contact());
   std::vector<long> all_fixed = opt.fixed;
   const double lM = lambda_min_free(M, K, M, all_fixed), lK = lambda_min_free(K, K, M, all_fixed);
   // With the massless boundary the contact rows carry no inertia: they
   // respond statically, up to |F| / lambda_min(K), within a step.
-  const double load_factor = opt.mass == "redistributed" ? 1 / lK : std::min(opt.dt * opt.dt / lM, 1 / lK);
+  const double load_factor =
+      opt.mass == "redistributed" ? 1 / lK : std::min(opt.dt * opt.dt / lM, 1 / lK);
   const StateScale state_scale{opt.dt, load_factor};
   const double scale0 = std::max(max_abs(u), state_scale.load_factor * max_abs(F0));
   if (!nbm_fuzz::accepted([&] { S->initialize(u, v, F0); })) return 0;
