@@ -1,0 +1,73 @@
+#include "periodic_orbit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+namespace nbm {
+
+void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit) {
+  const double T = orbit.period;
+  constexpr int kSamples = 256;
+  std::vector<double> times(kSamples);
+  for (int k = 0; k < kSamples; ++k) times[k] = T * k / kSamples;
+  const ExactFlow flow(field);
+  const FlowResult r = flow.integrate(orbit.u0, orbit.v0, T, true, times);
+
+  const double u_scale = std::max(orbit.u0.norm(), 1e-300);
+  const double v_scale = u_scale * 2 * M_PI / T;
+  orbit.periodicity_residual = std::max((r.u - orbit.u0).norm() / u_scale,
+                                        (r.v - orbit.v0).norm() / v_scale);
+  const Index n = field.size();
+  double c = 0;
+  for (Index k = 0; k < kSamples; ++k)
+    c = std::max(c, field.complementarity_residual(r.samples.col(k).head(n)));
+  orbit.complementarity_residual = c;
+  orbit.energy_start = field.energies(orbit.u0, orbit.v0);
+  orbit.energy_end = field.energies(r.u, r.v);
+  orbit.switches = r.switches;
+
+  // Time with a closed contact: sum over the intervals between switches.
+  auto any_closed = [](const ActiveSet& s) { return std::find(s.begin(), s.end(), true) != s.end(); };
+  ActiveSet current = field.active_set(orbit.u0);
+  double t_prev = 0;
+  orbit.contact_time = 0;
+  for (const auto& s : r.switches) {
+    if (any_closed(current)) orbit.contact_time += s.t - t_prev;
+    current = s.after, t_prev = s.t;
+  }
+  if (any_closed(current)) orbit.contact_time += T - t_prev;
+
+  orbit.monodromy = r.monodromy;
+  Eigen::EigenSolver<Matrix> eig(r.monodromy, false);
+  orbit.multipliers.assign(eig.eigenvalues().data(),
+                           eig.eigenvalues().data() + eig.eigenvalues().size());
+  std::sort(orbit.multipliers.begin(), orbit.multipliers.end(),
+            [](auto a, auto b) { return std::abs(a) > std::abs(b); });
+  orbit.stable = std::abs(orbit.multipliers.front()) <= 1 + 1e-6;
+}
+
+std::string summary(const PeriodicOrbit& orbit) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "period " << orbit.period << "\n"
+    << "energy " << orbit.energy_start(3) << " (kinetic " << orbit.energy_start(0)
+    << ", elastic " << orbit.energy_start(1) << ", load " << orbit.energy_start(2) << ")\n"
+    << "energy change over one period " << orbit.energy_end(3) - orbit.energy_start(3) << "\n"
+    << "contact time " << orbit.contact_time << " (" << orbit.switches.size()
+    << " switches per period)\n";
+  s.precision(3);
+  s << "periodicity residual " << orbit.periodicity_residual << "\n"
+    << "complementarity residual " << orbit.complementarity_residual << "\n"
+    << "Newton iterations " << orbit.iterations << "\n"
+    << "largest Floquet multipliers";
+  for (std::size_t k = 0; k < std::min<std::size_t>(6, orbit.multipliers.size()); ++k)
+    s << " " << orbit.multipliers[k].real() << (orbit.multipliers[k].imag() >= 0 ? "+" : "")
+      << orbit.multipliers[k].imag() << "i";
+  s << "\nstability " << (orbit.stable ? "stable (all |multipliers| <= 1)" : "unstable") << "\n";
+  return s.str();
+}
+
+}  // namespace nbm

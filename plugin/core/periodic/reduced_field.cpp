@@ -1,0 +1,187 @@
+#include "reduced_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+
+#include "errors.hpp"
+#include "lcp.hpp"
+
+namespace nbm {
+namespace {
+
+std::vector<Index> select(const std::vector<Index>& from, const ActiveSet& active, bool closed) {
+  std::vector<Index> out;
+  for (std::size_t k = 0; k < from.size(); ++k)
+    if (active[k] == closed) out.push_back(static_cast<Index>(k));
+  return out;
+}
+
+std::vector<Index> at(const std::vector<Index>& indices, const std::vector<Index>& positions) {
+  std::vector<Index> out;
+  out.reserve(positions.size());
+  for (Index p : positions) out.push_back(indices[p]);
+  return out;
+}
+
+}  // namespace
+
+ReducedField::ReducedField(const Matrix& M, const Matrix& K, const Vector& F,
+                           std::vector<Index> contact, const Vector& gaps)
+    : M_(M), K_(K), F_(F), g_(gaps), contact_(std::move(contact)) {
+  const Index N = M.rows();
+  if (M.cols() != N || K.rows() != N || K.cols() != N || F.size() != N)
+    throw InputError("reduced field: M, K and F must have the same size");
+  if (g_.size() != static_cast<Index>(contact_.size()))
+    throw InputError("reduced field: one gap per contact dof expected");
+  if (!M.allFinite() || !K.allFinite() || !F.allFinite() || !g_.allFinite())
+    throw InputError("reduced field: non-finite entries in M, K, F or the gaps");
+  std::vector<char> is_contact(N, 0);
+  for (Index c : contact_) {
+    if (c < 0 || c >= N || is_contact[c])
+      throw InputError("reduced field: contact dof " + std::to_string(c) +
+                       " out of range or repeated");
+    is_contact[c] = 1;
+  }
+  for (Index i = 0; i < N; ++i)
+    if (!is_contact[i]) interior_.push_back(i);
+  if (interior_.empty()) throw InputError("reduced field: no interior dof");
+  if (Eigen::LLT<Matrix>(K_(contact_, contact_)).info() != Eigen::Success)
+    throw NumericalError("reduced field: K_CC is not positive definite");
+  massless_ = M_(contact_, Eigen::all).isZero(0.0);
+}
+
+ReducedField ReducedField::from(const ContactProblem& problem, const Vector& F) {
+  return ReducedField(Matrix(problem.M()), Matrix(problem.K()), F, problem.contact_index(),
+                      problem.gaps());
+}
+
+const Region& ReducedField::region(const ActiveSet& active) const {
+  auto it = regions_.find(active);
+  if (it != regions_.end()) return *it->second;
+  if (active.size() != contact_.size())
+    throw InputError("reduced field: active set of the wrong size");
+
+  auto r = std::make_unique<Region>();
+  r->active = active;
+  const Index n = size(), nc = n_contact();
+  const auto open = select(contact_, active, false), closed = select(contact_, active, true);
+  const auto I = at(contact_, open), Act = at(contact_, closed);
+  const auto& O = interior_;
+
+  // u_C = A u_O + e (method.md §3): closed contacts sit on the obstacle, open
+  // ones carry no reaction.
+  r->A = Matrix::Zero(nc, n);
+  r->e = Vector::Zero(nc);
+  for (Index k : closed) r->e(k) = g_(k);
+  if (!open.empty()) {
+    Eigen::LLT<Matrix> KII(K_(I, I));
+    const Matrix AI = -KII.solve(K_(I, O));
+    const Vector eI = KII.solve(F_(I) - K_(I, Act) * g_(closed));
+    for (std::size_t a = 0; a < open.size(); ++a) {
+      r->A.row(open[a]) = AI.row(a);
+      r->e(open[a]) = eI(a);
+    }
+  }
+  // P^T M P, P^T K P and P^T (F - K [0; e]); the open rows of (K P) and of
+  // F_C - K_CC e vanish and A is zero on closed rows, hence the short forms.
+  const Matrix MOC = M_(O, contact_), KOC = K_(O, contact_);
+  r->M = M_(O, O) + MOC * r->A + r->A.transpose() * MOC.transpose() +
+         r->A.transpose() * M_(contact_, contact_) * r->A;
+  r->M = 0.5 * (r->M + r->M.transpose()).eval();
+  r->K = K_(O, O) + KOC * r->A;
+  r->K = 0.5 * (r->K + r->K.transpose()).eval();
+  r->f = F_(O) - KOC * r->e;
+
+  // Switching functions: gap on open contacts, reaction on closed ones.
+  const Matrix KCO = K_(contact_, O), KCC = K_(contact_, contact_);
+  const Matrix Klambda = KCO + KCC * r->A;
+  const Vector dlambda = F_(contact_) - KCC * r->e;
+  r->H.resize(nc, n);
+  r->d.resize(nc);
+  for (Index k = 0; k < nc; ++k) {
+    if (active[k]) {
+      r->H.row(k) = -Klambda.row(k);
+      r->d(k) = dlambda(k);
+    } else {
+      r->H.row(k) = -r->A.row(k);
+      r->d(k) = g_(k) - r->e(k);
+    }
+  }
+
+  r->mass.compute(r->M);
+  if (r->mass.info() != Eigen::Success)
+    throw NumericalError("reduced field: the reduced mass matrix is not positive definite");
+  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(r->K, r->M);
+  if (eig.info() != Eigen::Success)
+    throw NumericalError("reduced field: eigenvalue problem K_S phi = w^2 M_S phi failed");
+  r->omega2 = eig.eigenvalues();
+  const double top = std::max(r->omega2.cwiseAbs().maxCoeff(), 1e-300);
+  for (Index k = 0; k < n; ++k) {
+    // K_S is positive semi-definite: tiny negative eigenvalues are round-off
+    // of rigid modes.
+    if (r->omega2(k) < -1e-10 * top)
+      throw NumericalError("reduced field: the reduced stiffness is not positive semi-definite");
+    if (r->omega2(k) < 1e-13 * top) r->omega2(k) = 0;
+  }
+  r->modes = eig.eigenvectors();
+  return *regions_.emplace(active, std::move(r)).first->second;
+}
+
+ActiveSet ReducedField::active_set(const Vector& u) const {
+  // lambda = F_C - K_CO u_O - K_CC u_C with z = g - u_C: lambda = q + K_CC z.
+  const Matrix KCC = K_(contact_, contact_);
+  const Vector q = F_(contact_) - K_(contact_, interior_) * u - KCC * g_;
+  return LcpSolver::solve(KCC, q).active;
+}
+
+Vector ReducedField::acceleration(const Vector& u) const {
+  return region(active_set(u)).acceleration(u);
+}
+
+Vector ReducedField::expand(const Vector& u) const {
+  const Region& r = region(active_set(u));
+  Vector x(n_internal());
+  x(interior_) = u;
+  x(contact_) = r.A * u + r.e;
+  return x;
+}
+
+Vector ReducedField::expand_velocity(const Vector& u, const Vector& v) const {
+  const Region& r = region(active_set(u));
+  Vector x(n_internal());
+  x(interior_) = v;
+  x(contact_) = r.A * v;
+  return x;
+}
+
+Vector ReducedField::restrict(const Vector& u_internal) const { return u_internal(interior_); }
+
+Eigen::Vector4d ReducedField::energies(const Vector& u, const Vector& v) const {
+  const Vector x = expand(u), xv = expand_velocity(u, v);
+  Eigen::Vector4d E;
+  E(0) = 0.5 * xv.dot(M_ * xv);
+  E(1) = 0.5 * x.dot(K_ * x);
+  E(2) = -F_.dot(x);
+  E(3) = E(0) + E(1) + E(2);
+  return E;
+}
+
+double ReducedField::complementarity_residual(const Vector& u) const {
+  const Vector x = expand(u);
+  const Vector gap = g_ - x(contact_);
+  const Vector Kx = K_(contact_, Eigen::all) * x;
+  const Vector lambda = F_(contact_) - Kx;
+  const double gap_scale = std::max({g_.cwiseAbs().maxCoeff(), x(contact_).cwiseAbs().maxCoeff(),
+                                     1e-300});
+  const double force_scale = std::max({F_(contact_).cwiseAbs().maxCoeff(),
+                                       Kx.cwiseAbs().maxCoeff(), 1e-300});
+  double r = 0;
+  for (Index k = 0; k < n_contact(); ++k)
+    r = std::max(r, std::abs(std::min(gap(k) / gap_scale, lambda(k) / force_scale)));
+  return r;
+}
+
+}  // namespace nbm

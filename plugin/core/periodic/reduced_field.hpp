@@ -1,0 +1,100 @@
+// The reduced NBM equations (method.md §3-4) as a piecewise-linear ODE in the
+// interior unknowns u_O, the setting of the periodic-orbit solvers (§6).
+//
+// On the region of an active set S (closed contacts), u_C = A u_O + e and
+//
+//     M_S u_O'' + K_S u_O = f_S,   M_S = P^T M P,  K_S = P^T K P,
+//                                  f_S = P^T (F - K [0; e]),   P = [I; A],
+//
+// valid while h_S(u_O) = H_S u_O + d_S >= 0, where h_S collects the gaps
+// g_i - u_i of the open contacts and the reactions lambda_i of the closed
+// ones. K_S is the Schur complement K_OO - K_OI K_II^-1 K_IO (I: open
+// contacts), so the reduced force is the gradient of a C^1 potential and is
+// continuous across region boundaries. M_S jumps there unless the boundary
+// is massless (M_CC = 0, M_CO = 0), when M_S = M_OO for every S.
+//
+// Matrices are dense: the periodic-orbit solvers are meant for models of up
+// to a few thousand interior dofs.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Cholesky>
+
+#include "active_set.hpp"
+#include "contact_problem.hpp"
+#include "types.hpp"
+
+namespace nbm {
+
+/// Everything constant on the region of one active set.
+struct Region {
+  ActiveSet active;
+  Matrix A;        ///< u_C = A u_O + e (n_contact x n)
+  Vector e;
+  Matrix M, K;     ///< M_S, K_S (n x n)
+  Vector f;        ///< f_S
+  Matrix H;        ///< switching functions h = H u_O + d (n_contact rows):
+  Vector d;        ///< gap on open contacts, reaction on closed ones
+  Matrix modes;    ///< Phi: K_S Phi = M_S Phi diag(omega2), Phi^T M_S Phi = I
+  Vector omega2;   ///< squared circular frequencies, >= 0
+  Eigen::LLT<Matrix> mass;  ///< Cholesky factor of M_S
+
+  /// u_O'' = M_S^-1 (f_S - K_S u_O).
+  Vector acceleration(const Vector& u) const { return mass.solve(f - K * u); }
+};
+
+class ReducedField {
+ public:
+  /// Internal coordinates: M, K (N x N, symmetric), F (N), the indices of
+  /// the contact dofs (normal displacements, obstacle at u_i <= g_i) and
+  /// their gaps. Every other index is an interior dof. Throws InputError on
+  /// inconsistent sizes, NumericalError if M_S or K_CC is not definite.
+  ReducedField(const Matrix& M, const Matrix& K, const Vector& F, std::vector<Index> contact,
+               const Vector& gaps);
+
+  /// The field of a contact problem (its mass, so massless if the boundary
+  /// was made massless) under the load F (internal coordinates).
+  static ReducedField from(const ContactProblem& problem, const Vector& F);
+
+  Index size() const { return static_cast<Index>(interior_.size()); }  ///< n = dim u_O
+  Index n_contact() const { return static_cast<Index>(contact_.size()); }
+  Index n_internal() const { return size() + n_contact(); }
+  bool massless_boundary() const { return massless_; }
+  const std::vector<Index>& interior() const { return interior_; }
+  const std::vector<Index>& contact() const { return contact_; }
+  const Vector& gaps() const { return g_; }
+
+  /// The region of an active set (built on first use, then cached).
+  const Region& region(const ActiveSet& active) const;
+  /// The active set of the nodal boundary relation (LCP) at u_O.
+  ActiveSet active_set(const Vector& u) const;
+  /// u_O'' at u_O, on the region of the LCP's active set.
+  Vector acceleration(const Vector& u) const;
+
+  /// Internal vector (size N) from u_O: u_C = A u_O + e on the region of
+  /// u_O's active set. With `velocity`, the same for v_O (v_C = A v_O).
+  Vector expand(const Vector& u) const;
+  Vector expand_velocity(const Vector& u, const Vector& v) const;
+  /// u_O from an internal vector.
+  Vector restrict(const Vector& u_internal) const;
+
+  /// Kinetic, elastic and load-potential energy (method.md §7) of the
+  /// internal state (u, v) = (P u_O + e, P v_O), and their sum.
+  Eigen::Vector4d energies(const Vector& u, const Vector& v) const;
+  /// Complementarity residual of the nodal boundary relation at u_O:
+  /// max_i |min(gap_i, lambda_i)| relative to the scales of g and lambda
+  /// (zero up to round-off by construction; reported as a check).
+  double complementarity_residual(const Vector& u) const;
+
+ private:
+  Matrix M_, K_;
+  Vector F_, g_;
+  std::vector<Index> interior_, contact_;
+  bool massless_ = false;
+  mutable std::map<ActiveSet, std::unique_ptr<Region>> regions_;
+};
+
+}  // namespace nbm

@@ -1,0 +1,147 @@
+#include "shooting.hpp"
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <Eigen/QR>
+
+#include "errors.hpp"
+
+namespace nbm {
+namespace {
+
+// Gradient of the total energy with respect to (u_O, v_O): the reduced
+// internal force minus load and the reduced momentum, on the region of u_O.
+Vector energy_gradient(const ReducedField& field, const Vector& u, const Vector& v) {
+  const Region& r = field.region(field.active_set(u));
+  Vector g(2 * u.size());
+  g << r.K * u - r.f, r.M * v;
+  return g;
+}
+
+double amplitude_value(const ReducedField& field, const ShootingOptions& o, const Vector& u,
+                       const Vector& v) {
+  return o.kind == ShootingOptions::Amplitude::displacement ? u(o.probe)
+                                                             : field.energies(u, v)(3);
+}
+
+// Relative periodicity residual, as in periodic_orbit.hpp.
+double periodicity(const Vector& u0, const Vector& v0, const FlowResult& r, double T) {
+  const double us = std::max(u0.norm(), 1e-300), vs = us * 2 * M_PI / T;
+  return std::max((r.u - u0).norm() / us, (r.v - v0).norm() / vs);
+}
+
+}  // namespace
+
+PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v0, double T,
+                    const ShootingOptions& o) {
+  const Index n = field.size();
+  if (u0.size() != n || v0.size() != n)
+    throw InputError("shooting: initial state of size " + std::to_string(u0.size()) +
+                     ", expected " + std::to_string(n) + " interior dofs");
+  if (!u0.allFinite() || !v0.allFinite()) throw InputError("shooting: non-finite initial state");
+  if (!(T > 0) || !std::isfinite(T)) throw InputError("shooting: the period guess must be > 0");
+  if (o.probe < 0 || o.probe >= n)
+    throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
+                     std::to_string(n) + ")");
+  if (!(o.tolerance > 0)) throw InputError("shooting: tolerance must be > 0");
+
+  const ExactFlow flow(field);
+  const double target = std::isnan(o.amplitude)
+                            ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0)
+                            : o.amplitude;
+  const double amp_scale = std::max(std::abs(target), 1e-300);
+  const bool half = o.half_period;
+
+  // Unknowns y = (u0, v0, T) or, for half-period shooting, (u0, T/2).
+  Vector y(half ? n + 1 : 2 * n + 1);
+  if (half)
+    y << u0, 0.5 * T;
+  else
+    y << u0, v0, T;
+  auto unpack = [&](const Vector& y, Vector& u, Vector& v, double& period) {
+    u = y.head(n);
+    v = half ? Vector::Zero(n) : Vector(y.segment(n, n));
+    period = half ? 2 * y(n) : y(2 * n);
+  };
+
+  // Residual R (and Jacobian J) at y; `merit` is the scaled size of R that
+  // convergence is judged on.
+  struct Evaluation {
+    Vector R;
+    Matrix J;
+    double merit = std::numeric_limits<double>::infinity();
+  };
+  auto evaluate = [&](const Vector& y, bool jacobian) {
+    Evaluation e;
+    Vector u, v;
+    double period;
+    unpack(y, u, v, period);
+    if (!(period > 0) || !u.allFinite() || !v.allFinite()) return e;
+    const FlowResult r = flow.integrate(u, v, half ? 0.5 * period : period, jacobian);
+    const double amp = amplitude_value(field, o, u, v) - target;
+    const double us = std::max(u.norm(), 1e-300), vs = us * 2 * M_PI / period;
+    if (half) {
+      e.R.resize(n + 1);
+      e.R << r.v, amp;
+      e.merit = std::max(r.v.norm() / vs, std::abs(amp) / amp_scale);
+    } else {
+      e.R.resize(2 * n + 2);
+      e.R << r.u - u, r.v - v, v(o.probe), amp;
+      e.merit = std::max({periodicity(u, v, r, period), std::abs(v(o.probe)) / vs,
+                          std::abs(amp) / amp_scale});
+    }
+    if (!jacobian) return e;
+    Vector grad = Vector::Zero(2 * n);
+    if (o.kind == ShootingOptions::Amplitude::displacement)
+      grad(o.probe) = 1;
+    else
+      grad = energy_gradient(field, u, v);
+    if (half) {
+      // d v(T/2) / d(u0, T/2) = (monodromy_vu, a(T/2)).
+      e.J = Matrix::Zero(n + 1, n + 1);
+      e.J.topLeftCorner(n, n) = r.monodromy.bottomLeftCorner(n, n);
+      e.J.topRightCorner(n, 1) = r.a;
+      e.J.bottomLeftCorner(1, n) = grad.head(n).transpose();
+    } else {
+      e.J = Matrix::Zero(2 * n + 2, 2 * n + 1);
+      e.J.topLeftCorner(2 * n, 2 * n) = r.monodromy - Matrix::Identity(2 * n, 2 * n);
+      e.J.block(0, 2 * n, n, 1) = r.v;
+      e.J.block(n, 2 * n, n, 1) = r.a;
+      e.J(2 * n, n + o.probe) = 1;
+      e.J.block(2 * n + 1, 0, 1, 2 * n) = grad.transpose();
+    }
+    return e;
+  };
+
+  // Gauss-Newton with backtracking on the merit: the period map is only
+  // piecewise smooth, and a full step from a rough guess can jump to
+  // another branch (a multiple of the period).
+  PeriodicOrbit orbit;
+  Evaluation e = evaluate(y, true);
+  for (int it = 0;; ++it) {
+    orbit.residual_history.push_back(e.merit);
+    orbit.iterations = it;
+    if (e.merit <= o.tolerance) break;
+    if (it >= o.max_iterations || !std::isfinite(e.merit))
+      throw NumericalError("shooting: no convergence in " + std::to_string(it) +
+                           " Newton iterations (residual " + std::to_string(e.merit) + ")");
+    const Vector step = e.J.completeOrthogonalDecomposition().solve(-e.R);
+    // Trust region on the period: at most 20% change per step.
+    const Index iT = y.size() - 1;
+    double damping = std::min(1.0, 0.2 * std::abs(y(iT)) / std::max(std::abs(step(iT)), 1e-300));
+    Evaluation trial = evaluate(y + step, false);
+    while (!(trial.merit < e.merit) && damping > 1.0 / 1024) {
+      damping /= 2;
+      trial = evaluate(y + damping * step, false);
+    }
+    y += damping * step;
+    e = evaluate(y, true);
+  }
+  unpack(y, orbit.u0, orbit.v0, orbit.period);
+  analyse_orbit(field, orbit);
+  return orbit;
+}
+
+}  // namespace nbm

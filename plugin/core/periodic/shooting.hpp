@@ -1,0 +1,39 @@
+// Shooting for autonomous periodic orbits of the reduced NBM equations
+// (method.md §6) on the exact flow (exact_flow.hpp): Newton's method on the
+// period map with the exact monodromy matrix.
+//
+// Full shooting: unknowns (u0, v0, T); equations x(T) - x0 = 0, the phase
+// condition v0[probe] = 0 (t = 0 at a turning point of the probe dof) and
+// an amplitude condition. The system is overdetermined by one equation and
+// consistent (on a conservative family, the monodromy has two multipliers
+// at 1); Newton steps are least-squares solutions.
+//
+// Half-period shooting, for orbits through a state at rest: unknowns
+// (u0, T/2) with v0 = 0; equations v(T/2) = 0 and the amplitude condition.
+// The reduced equations are reversible (the field depends on u_O only), so
+// an orbit at rest at 0 and T/2 retraces itself: it is periodic.
+#pragma once
+
+#include "periodic_orbit.hpp"
+
+namespace nbm {
+
+struct ShootingOptions {
+  enum class Amplitude { displacement, energy };
+  Index probe = 0;  ///< interior dof of the phase and displacement conditions
+  /// The amplitude condition: u0[probe] = amplitude, or total energy =
+  /// amplitude. Unset (NaN): the value of the initial guess.
+  Amplitude kind = Amplitude::displacement;
+  double amplitude = std::numeric_limits<double>::quiet_NaN();
+  bool half_period = false;
+  double tolerance = 1e-12;  ///< on the periodicity residual (periodic_orbit.hpp)
+  int max_iterations = 40;
+};
+
+/// Newton from the guess (u0, v0, T); the returned orbit is analysed
+/// (analyse_orbit). Throws NumericalError if Newton does not converge,
+/// InputError on a bad guess or option.
+PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v0, double T,
+                    const ShootingOptions& options);
+
+}  // namespace nbm
