@@ -27,9 +27,20 @@ struct PeriodicOrbit {
   double contact_time = 0;        ///< time with at least one contact closed
   std::vector<SwitchEvent> switches;
   Matrix monodromy;               ///< 2n x 2n
-  std::vector<std::complex<double>> multipliers;  ///< by decreasing modulus
+  /// Floquet multipliers by decreasing modulus (floquet_multipliers).
+  std::vector<std::complex<double>> multipliers;
+  /// |X f - f| / |f| for the vector field f at the start: how exactly the
+  /// trivial multiplier 1 holds.
+  double trivial_residual = 0;
   bool stable = false;            ///< all |multipliers| <= 1 + 1e-6
 };
+
+/// Eigenvalues of the monodromy X of an autonomous orbit starting at
+/// (u0, v0) with acceleration a0: the trivial multiplier 1 (eigenvector
+/// f = (v0, a0), residual returned in `trivial_residual`) and the
+/// eigenvalues of the map X induces on the quotient by span(f).
+std::vector<std::complex<double>> floquet_multipliers(const Matrix& monodromy, const Vector& v0,
+                                                      const Vector& a0, double& trivial_residual);
 
 /// Integrates one period from (orbit.u0, orbit.v0) with the exact flow and
 /// fills the verification fields of `orbit`.

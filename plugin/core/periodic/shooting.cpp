@@ -21,9 +21,13 @@ Vector energy_gradient(const ReducedField& field, const Vector& u, const Vector&
 }
 
 double amplitude_value(const ReducedField& field, const ShootingOptions& o, const Vector& u,
-                       const Vector& v) {
-  return o.kind == ShootingOptions::Amplitude::displacement ? u(o.probe)
-                                                             : field.energies(u, v)(3);
+                       const Vector& v, double period) {
+  switch (o.kind) {
+    case ShootingOptions::Amplitude::displacement: return u(o.probe);
+    case ShootingOptions::Amplitude::energy: return field.energies(u, v)(3);
+    case ShootingOptions::Amplitude::period: break;
+  }
+  return period;
 }
 
 // Relative periodicity residual, as in periodic_orbit.hpp.
@@ -49,7 +53,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
 
   const ExactFlow flow(field);
   const double target = std::isnan(o.amplitude)
-                            ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0)
+                            ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0, T)
                             : o.amplitude;
   const double amp_scale = std::max(std::abs(target), 1e-300);
   const bool half = o.half_period;
@@ -80,7 +84,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     unpack(y, u, v, period);
     if (!(period > 0) || !u.allFinite() || !v.allFinite()) return e;
     const FlowResult r = flow.integrate(u, v, half ? 0.5 * period : period, jacobian);
-    const double amp = amplitude_value(field, o, u, v) - target;
+    const double amp = amplitude_value(field, o, u, v, period) - target;
     const double us = std::max(u.norm(), 1e-300), vs = us * 2 * M_PI / period;
     if (half) {
       e.R.resize(n + 1);
@@ -93,24 +97,25 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
                           std::abs(amp) / amp_scale});
     }
     if (!jacobian) return e;
-    Vector grad = Vector::Zero(2 * n);
-    if (o.kind == ShootingOptions::Amplitude::displacement)
-      grad(o.probe) = 1;
-    else
-      grad = energy_gradient(field, u, v);
+    // Gradient of the amplitude condition in (u0, v0, T).
+    Vector grad = Vector::Zero(2 * n + 1);
+    if (o.kind == ShootingOptions::Amplitude::displacement) grad(o.probe) = 1;
+    if (o.kind == ShootingOptions::Amplitude::energy) grad.head(2 * n) = energy_gradient(field, u, v);
+    if (o.kind == ShootingOptions::Amplitude::period) grad(2 * n) = 1;
     if (half) {
       // d v(T/2) / d(u0, T/2) = (monodromy_vu, a(T/2)).
       e.J = Matrix::Zero(n + 1, n + 1);
       e.J.topLeftCorner(n, n) = r.monodromy.bottomLeftCorner(n, n);
       e.J.topRightCorner(n, 1) = r.a;
       e.J.bottomLeftCorner(1, n) = grad.head(n).transpose();
+      e.J(n, n) = 2 * grad(2 * n);
     } else {
       e.J = Matrix::Zero(2 * n + 2, 2 * n + 1);
       e.J.topLeftCorner(2 * n, 2 * n) = r.monodromy - Matrix::Identity(2 * n, 2 * n);
       e.J.block(0, 2 * n, n, 1) = r.v;
       e.J.block(n, 2 * n, n, 1) = r.a;
       e.J(2 * n, n + o.probe) = 1;
-      e.J.block(2 * n + 1, 0, 1, 2 * n) = grad.transpose();
+      e.J.row(2 * n + 1) = grad.transpose();
     }
     return e;
   };

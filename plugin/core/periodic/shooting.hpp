@@ -19,10 +19,11 @@
 namespace nbm {
 
 struct ShootingOptions {
-  enum class Amplitude { displacement, energy };
+  enum class Amplitude { displacement, energy, period };
   Index probe = 0;  ///< interior dof of the phase and displacement conditions
-  /// The amplitude condition: u0[probe] = amplitude, or total energy =
-  /// amplitude. Unset (NaN): the value of the initial guess.
+  /// The condition that picks one orbit of a family: u0[probe] = amplitude,
+  /// total energy = amplitude, or period = amplitude. Unset (NaN): the value
+  /// of the initial guess.
   Amplitude kind = Amplitude::displacement;
   double amplitude = std::numeric_limits<double>::quiet_NaN();
   bool half_period = false;

@@ -1,0 +1,149 @@
+// Periodic orbits of the fixed-gap bar (benchmarks.md §C) by shooting:
+// below grazing, homogeneity, energy and Floquet structure.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "bars.hpp"
+#include "shooting.hpp"
+
+namespace {
+
+using Index = Eigen::Index;
+using nbm::Matrix;
+using nbm::Vector;
+using nbm_test::GapBar;
+
+// Orbit in contact from the continuum rest profile of contact duration tau.
+nbm::PeriodicOrbit orbit_in_contact(const GapBar& bar, double tau) {
+  const auto field = bar.field();
+  const Index n = field.size();
+  Vector u0(n);
+  for (Index k = 0; k < n; ++k)
+    u0(k) = nbm_test::continuum_rest_profile(bar, tau, bar.x_of_interior(static_cast<int>(k)));
+  nbm::ShootingOptions o;
+  o.half_period = true;
+  o.probe = n - 1;
+  return nbm::shoot(field, u0, Vector::Zero(n), (4 - tau) * bar.L / bar.c(), o);
+}
+
+TEST(BarOrbits, BelowGrazingThePeriodIsTheLinearFiniteElementOne) {
+  for (bool massless : {false, true}) {
+    GapBar bar;
+    bar.N = 12, bar.massless = massless, bar.E = 3, bar.L = 2;
+    const auto field = bar.field();
+    // The linear model with the contact open, built independently: static
+    // condensation of the tip dof (its stiffness row is the constraint) in
+    // the user's matrices, fixed dof removed.
+    nbm::SparseMatrix Ms, Ks;
+    bar.assemble(Ms, Ks);
+    const int N = bar.N;
+    const Matrix K = Matrix(Ks).bottomRightCorner(N, N);
+    Matrix M = Matrix(Ms).bottomRightCorner(N, N);
+    if (massless) {
+      // u_N = 2 u_{N-1} - u_{N-2}: the affine extrapolation of the redistribution.
+      Matrix Pi = Matrix::Identity(N, N);
+      Pi.row(N - 1).setZero();
+      Pi(N - 1, N - 2) = 2, Pi(N - 1, N - 3) = -1;
+      M = Pi.transpose() * M * Pi;
+    }
+    Matrix P(N, N - 1);
+    P.topRows(N - 1).setIdentity();
+    P.row(N - 1) = -K.row(N - 1).head(N - 1) / K(N - 1, N - 1);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(P.transpose() * K * P,
+                                                         P.transpose() * M * P);
+    const double T1 = 2 * M_PI / std::sqrt(eig.eigenvalues()(0));
+    // First mode, tip at 60% of the gap, on the far side.
+    Vector u0 = eig.eigenvectors().col(0);
+    u0 *= -0.6 * bar.g / std::abs((P * u0)(N - 1));
+    nbm::ShootingOptions o;
+    o.probe = N - 2;
+    for (bool half : {false, true}) {
+      o.half_period = half;
+      const auto orbit = nbm::shoot(field, 1.05 * u0, Vector::Zero(N - 1), 0.97 * T1, o);
+      EXPECT_NEAR(orbit.period, T1, 1e-12 * T1) << massless << half;
+      EXPECT_TRUE(orbit.switches.empty());
+      EXPECT_LE((orbit.u0 - 1.05 * u0).norm(), 1e-10 * u0.norm());
+    }
+  }
+}
+
+TEST(BarOrbits, OrbitsScaleWithTheGapAtFixedPeriod) {
+  for (bool massless : {false, true}) {
+    GapBar bar;
+    bar.N = 10, bar.massless = massless;
+    const auto orbit = orbit_in_contact(bar, 0.3);
+    ASSERT_EQ(orbit.switches.size(), 2u);
+    const double s = 7.5;
+    GapBar scaled = bar;
+    scaled.g *= s;
+    const auto field = scaled.field();
+    nbm::ShootingOptions o;
+    o.half_period = true;
+    o.probe = field.size() - 1;
+    const auto big = nbm::shoot(field, s * orbit.u0, Vector::Zero(field.size()), orbit.period, o);
+    EXPECT_NEAR(big.period, orbit.period, 1e-10 * orbit.period);
+    EXPECT_NEAR(big.energy_start(3), s * s * orbit.energy_start(3), 1e-10 * big.energy_start(3));
+    EXPECT_LE((big.u0 - s * orbit.u0).norm(), 1e-10 * big.u0.norm());
+  }
+}
+
+TEST(BarOrbits, AtZeroGapThePeriodDoesNotDependOnTheEnergy) {
+  for (bool massless : {false, true}) {
+    GapBar bar;
+    bar.N = 10, bar.massless = massless, bar.g = 0;
+    const auto field = bar.field();
+    const Index n = field.size();
+    // A start at rest pulled away from the obstacle.
+    Vector u0(n);
+    for (Index k = 0; k < n; ++k) u0(k) = -0.1 * bar.x_of_interior(static_cast<int>(k));
+    nbm::ShootingOptions o;
+    o.half_period = true;
+    o.probe = n - 1;
+    const auto a = nbm::shoot(field, u0, Vector::Zero(n), 3.0, o);
+    o.amplitude = 40 * a.u0(n - 1);
+    const auto b = nbm::shoot(field, 40 * a.u0, Vector::Zero(n), 1.02 * a.period, o);
+    EXPECT_NEAR(b.period, a.period, 1e-10 * a.period) << massless;
+    EXPECT_NEAR(b.energy_start(3), 1600 * a.energy_start(3), 1e-9 * b.energy_start(3));
+  }
+}
+
+TEST(BarOrbits, MasslessBoundaryConservesEnergyAndHasTwoUnitMultipliers) {
+  GapBar bar;
+  bar.N = 10, bar.massless = true;
+  const auto orbit = orbit_in_contact(bar, 0.382);
+  EXPECT_LE(orbit.periodicity_residual, 1e-10);
+  EXPECT_LE(orbit.complementarity_residual, 1e-12);
+  const double E = orbit.energy_start(3);
+  EXPECT_NEAR(orbit.energy_end(3), E, 1e-12 * E);
+  // Energy at every switch, from the exact flow.
+  const auto field = bar.field();
+  const nbm::ExactFlow flow(field);
+  std::vector<double> times;
+  for (const auto& s : orbit.switches) times.push_back(s.t);
+  const auto r = flow.integrate(orbit.u0, orbit.v0, orbit.period, false, times);
+  const Index n = field.size();
+  for (Index k = 0; k < r.samples.cols(); ++k)
+    EXPECT_NEAR(field.energies(r.samples.col(k).head(n), r.samples.col(k).tail(n))(3), E,
+                1e-12 * E);
+  // Conservative autonomous orbit in a family: two multipliers at +1.
+  int at_one = 0;
+  for (const auto& mu : orbit.multipliers) at_one += std::abs(mu - 1.0) < 1e-8;
+  EXPECT_GE(at_one, 2);
+  EXPECT_LE(orbit.trivial_residual, 1e-10);
+  EXPECT_TRUE(orbit.stable);
+  EXPECT_NEAR(std::abs(std::complex<double>(Matrix(orbit.monodromy).determinant())), 1, 1e-9);
+}
+
+TEST(BarOrbits, MassOnTheBoundaryLosesAndRegainsEnergyOverOnePeriod) {
+  GapBar bar;
+  bar.N = 10;
+  const auto orbit = orbit_in_contact(bar, 0.3);
+  EXPECT_LE(orbit.periodicity_residual, 1e-10);
+  EXPECT_LE(orbit.complementarity_residual, 1e-12);
+  // Periodic, so the energy returns to its start value (benchmarks.md §E).
+  EXPECT_NEAR(orbit.energy_end(3), orbit.energy_start(3), 1e-10 * orbit.energy_start(3));
+}
+
+}  // namespace
