@@ -7,6 +7,8 @@ packages=(
   freefem++ libfreefem++-dev gmsh gnuplot-nox
   libeigen3-dev libsuitesparse-dev
   libgtest-dev libbenchmark-dev
+  clang-14 libclang-rt-14-dev   # libFuzzer (tests/fuzz/run.sh); gcc's ASan/UBSan
+                                # runtimes (tests/sanitize.sh) come with build-essential
 )
 missing=()
 for p in "${packages[@]}"; do

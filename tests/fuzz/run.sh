@@ -28,7 +28,7 @@
 #   build-fuzz/fuzz/<target> -merge=1 <new dir> build-fuzz/fuzz-corpus/<target>
 #
 # Needs clang with libFuzzer: Debian packages clang-14 and libclang-rt-14-dev.
-# The last line is "fuzz: N passed, M failed" (one per target).
+# The last line is "fuzz: N passed, M failed (E executions)" (one per target).
 set -u
 repo=$(cd "$(dirname "$0")/../.." && pwd)
 total=${1:-60}
@@ -36,9 +36,10 @@ bdir="$repo/build-fuzz"
 targets=(fuzz_contact_set fuzz_lcp fuzz_solver)
 start=$SECONDS
 
+execs_total=0
 finish() {  # finish <passed> <failed>
   echo "fuzz: total time $((SECONDS - start)) s"
-  echo "fuzz: $1 passed, $2 failed"
+  echo "fuzz: $1 passed, $2 failed ($execs_total executions)"
   [ "$2" -eq 0 ]
   exit
 }
@@ -82,6 +83,7 @@ for t in "${targets[@]}"; do
     -artifact_prefix="$bdir/fuzz-artifacts/$t-" -print_final_stats=1 >"$log" 2>&1
   code=$?
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+  execs_total=$((execs_total + ${execs:-0}))
   if [ $code -eq 0 ]; then
     echo "fuzz: $t: OK, ${execs:-?} executions in ${share} s"
     passed=$((passed + 1))
