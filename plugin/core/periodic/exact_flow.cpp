@@ -9,7 +9,6 @@ namespace nbm {
 namespace {
 
 constexpr long kMaxSwitches = 100'000;
-constexpr double kZeroTolerance = 1e-11;
 
 // cos(w t), sin(w t)/w and (1 - cos(w t))/w^2, continuous down to w = 0.
 struct ModalFunctions {
@@ -89,35 +88,6 @@ Matrix RegionFlow::transition(double t) const {
   return X;
 }
 
-ActiveSet ExactFlow::next_active_set(const Region& before, const Vector& u, const Vector& v,
-                                     Index row) const {
-  // Flip every contact whose switching function is at zero and decreasing
-  // (usually just `row`; several at once on symmetric motions).
-  const Vector h = before.H * u + before.d, rate = before.H * v;
-  const double scale = (before.H.cwiseAbs() * u.cwiseAbs() + before.d.cwiseAbs()).maxCoeff();
-  ActiveSet next = before.active;
-  next[row] = !next[row];
-  for (Index j = 0; j < h.size(); ++j)
-    if (j != row && std::abs(h(j)) <= kZeroTolerance * scale && rate(j) < 0) next[j] = !next[j];
-  // The new region must contain u and be entered, not left, along v.
-  const Region& after = field_.region(next);
-  const Vector h2 = after.H * u + after.d, rate2 = after.H * v;
-  const double scale2 = (after.H.cwiseAbs() * u.cwiseAbs() + after.d.cwiseAbs()).maxCoeff();
-  bool consistent = true;
-  for (Index j = 0; j < h2.size(); ++j)
-    if (h2(j) < -kZeroTolerance * scale2 ||
-        (h2(j) <= kZeroTolerance * scale2 && rate2(j) < 0))
-      consistent = false;
-  if (consistent) return next;
-  // Degenerate switch (several contacts at a common boundary): the LCP just
-  // after the switch point decides.
-  const double w_max = std::sqrt(std::max(before.omega2.maxCoeff(), 1e-300));
-  next = field_.active_set(u + (1e-7 / w_max) * v);
-  if (next == before.active)
-    throw NumericalError("exact flow: no consistent active set after a switch");
-  return next;
-}
-
 FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bool sensitivity,
                                 const std::vector<double>& sample_times) const {
   const Index n = field_.size();
@@ -153,7 +123,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     t += tau;
     if (!crossing) break;
 
-    const ActiveSet next = next_active_set(region, out.u, out.v, crossing->row);
+    const ActiveSet next = field_.switched(region, out.u, out.v, crossing->row);
     if (sensitivity) {
       // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f-) with
       // n = (H_j, 0), f = (v, a); only the acceleration jumps.

@@ -56,8 +56,6 @@ class ExactFlow {
   const ReducedField& field() const { return field_; }
 
  private:
-  ActiveSet next_active_set(const Region& before, const Vector& u, const Vector& v,
-                            Index row) const;
   const ReducedField& field_;
 };
 

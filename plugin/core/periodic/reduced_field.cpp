@@ -12,6 +12,9 @@
 namespace nbm {
 namespace {
 
+// Switching functions within this fraction of their scale count as zero.
+constexpr double kZeroTolerance = 1e-11;
+
 std::vector<Index> select(const std::vector<Index>& from, const ActiveSet& active, bool closed) {
   std::vector<Index> out;
   for (std::size_t k = 0; k < from.size(); ++k)
@@ -128,6 +131,35 @@ const Region& ReducedField::region(const ActiveSet& active) const {
   }
   r->modes = eig.eigenvectors();
   return *regions_.emplace(active, std::move(r)).first->second;
+}
+
+ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Vector& v,
+                                     Index row) const {
+  // Flip every contact whose switching function is at zero and decreasing
+  // (usually just `row`; several at once on symmetric motions).
+  const Vector h = before.H * u + before.d, rate = before.H * v;
+  const double scale = (before.H.cwiseAbs() * u.cwiseAbs() + before.d.cwiseAbs()).maxCoeff();
+  ActiveSet next = before.active;
+  next[row] = !next[row];
+  for (Index j = 0; j < h.size(); ++j)
+    if (j != row && std::abs(h(j)) <= kZeroTolerance * scale && rate(j) < 0) next[j] = !next[j];
+  // The new region must contain u and be entered, not left, along v.
+  const Region& after = region(next);
+  const Vector h2 = after.H * u + after.d, rate2 = after.H * v;
+  const double scale2 = (after.H.cwiseAbs() * u.cwiseAbs() + after.d.cwiseAbs()).maxCoeff();
+  bool consistent = true;
+  for (Index j = 0; j < h2.size(); ++j)
+    if (h2(j) < -kZeroTolerance * scale2 ||
+        (h2(j) <= kZeroTolerance * scale2 && rate2(j) < 0))
+      consistent = false;
+  if (consistent) return next;
+  // Degenerate switch (several contacts at a common boundary): the LCP just
+  // past u along v (a relative displacement of 1e-7) decides.
+  const double size = std::max({u.norm(), g_.norm(), 1e-300});
+  next = active_set(u + (1e-7 * size / std::max(v.norm(), 1e-300)) * v);
+  if (next == before.active)
+    throw NumericalError("periodic orbits: no consistent active set after a contact switch");
+  return next;
 }
 
 ActiveSet ReducedField::active_set(const Vector& u) const {

@@ -71,6 +71,12 @@ class ReducedField {
   const Region& region(const ActiveSet& active) const;
   /// The active set of the nodal boundary relation (LCP) at u_O.
   ActiveSet active_set(const Vector& u) const;
+  /// The active set entered when the switching function `row` of the region
+  /// `before` reaches zero at u_O moving along v_O (v_O may be any tangent,
+  /// e.g. du/dtau): `row` flips, with every other row at zero and decreasing;
+  /// if that set is not entered along v_O (a degenerate switch), the LCP just
+  /// past u_O decides. Throws NumericalError if no new set is found.
+  ActiveSet switched(const Region& before, const Vector& u, const Vector& v, Index row) const;
   /// u_O'' at u_O, on the region of the LCP's active set.
   Vector acceleration(const Vector& u) const;
 
