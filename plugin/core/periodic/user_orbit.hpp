@@ -1,0 +1,66 @@
+// Periodic orbits on the user's dofs: the front end of the periodic-orbit
+// solvers for the FreeFEM binding. Like solver.hpp, free of Eigen and
+// FreeFEM types.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace nbm {
+
+class ContactProblem;
+
+struct OrbitOptions {
+  std::string method = "shooting";  ///< "shooting" or "harmonic-balance"
+  /// User dof of the phase and displacement conditions: an interior dof
+  /// (not fixed, not the normal component of a contact node). -1: the
+  /// interior dof of largest |u| in the initial guess.
+  long probe = -1;
+  /// Which orbit of the family: "displacement" (u[probe](0) = amplitude),
+  /// "energy" (total energy = amplitude) or "period" (period = amplitude).
+  std::string condition = "displacement";
+  double amplitude = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the guess's
+  bool half_period = false;  ///< shooting: orbits through a state at rest
+  int harmonics = 20;        ///< harmonic balance
+  bool cosine_only = false;  ///< harmonic balance: orbits even in time
+  std::string integration = "exact";  ///< harmonic balance: "exact" or "aft"
+  bool adaptive = false;              ///< harmonic balance: double H until truncation <= tol
+  double truncation_tolerance = 1e-6;
+  int max_iterations = 50;
+};
+
+struct OrbitReport {
+  double period = 0;
+  std::vector<double> u0, v0;  ///< user vectors at t = 0
+  std::vector<double> energies;  ///< kinetic, elastic, load, total at t = 0
+  double energy_change = 0;      ///< over one period of the exact flow
+  double contact_time = 0;
+  long switches = 0;             ///< contact switches per period
+  double periodicity_residual = 0, complementarity_residual = 0, trivial_residual = 0;
+  std::vector<double> multipliers_re, multipliers_im;  ///< by decreasing modulus
+  bool stable = false;
+  int iterations = 0;
+  // Harmonic balance only:
+  int harmonics = 0;
+  double balance_residual = 0, truncation = 0;
+  /// User dof i, column k of (c0, a1, b1, a2, b2, ...): coefficients[i * (2H+1) + k].
+  std::vector<double> coefficients;
+  std::string summary;
+};
+
+/// Computes a periodic orbit of the reduced NBM equations of `problem`
+/// under the constant load F (user vector) from the guess (u, v, T) (user
+/// vectors). Throws InputError naming the argument, NumericalError if the
+/// solver does not converge.
+OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<double>& F,
+                           const std::vector<double>& u, const std::vector<double>& v, double T,
+                           const OrbitOptions& options);
+
+/// The user displacement (and velocity) along the orbit at the given times
+/// (exact flow from the report's initial state), one vector per time.
+void orbit_states(const ContactProblem& problem, const std::vector<double>& F,
+                  const OrbitReport& orbit, const std::vector<double>& times,
+                  std::vector<std::vector<double>>& u, std::vector<std::vector<double>>& v);
+
+}  // namespace nbm
