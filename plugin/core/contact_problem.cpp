@@ -125,6 +125,19 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   user_lumped_mass_ = M * Vector::Ones(n_dofs_);
   const SparseMatrix T = contacts_.rotation(n_dofs_);
   to_internal_ = select * SparseMatrix(T.transpose());
+  to_internal_.prune(0.0);
+  {
+    // One entry +-1 per row: the round trip user <-> internal only moves and
+    // negates numbers, which is exact.
+    std::vector<int> entries(to_internal_.rows(), 0);
+    for (Index j = 0; j < to_internal_.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(to_internal_, j); it; ++it) {
+        ++entries[it.row()];
+        if (std::abs(it.value()) != 1.0) exact_round_trip_ = false;
+      }
+    for (int e : entries)
+      if (e != 1) exact_round_trip_ = false;
+  }
   const SparseMatrix back = to_internal_.transpose();
   // Symmetric to the last bit (the input is symmetric to kSymmetryTolerance):
   // Cholesky factors and the LCP rely on it.

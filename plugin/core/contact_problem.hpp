@@ -61,6 +61,11 @@ class ContactProblem {
   Vector to_internal(const Vector& x) const;
   /// User vector of internal coordinates; fixed dofs are zero.
   Vector to_user(const Vector& x) const;
+  /// True if to_internal(to_user(x)) == x bit for bit for every finite x:
+  /// every contact normal is a coordinate axis (or there is no rotation).
+  /// Otherwise the rotation rounds, and a front end that hands out user
+  /// vectors must round its state through them to restart exactly.
+  bool exact_round_trip() const { return exact_round_trip_; }
 
  private:
   Index n_dofs_;
@@ -75,6 +80,7 @@ class ContactProblem {
   Matrix K_CC_;
   SparseMatrix B_;
   bool massless_boundary_ = false;
+  bool exact_round_trip_ = true;
 };
 
 }  // namespace nbm

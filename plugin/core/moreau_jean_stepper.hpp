@@ -37,6 +37,8 @@ class MoreauJeanStepper final : public Stepper {
   /// The given state is taken as it is (no nodal boundary relation).
   void start() override;
   void solve_acceleration(const Vector& F) override;
+  bool exact_impenetrability() const override { return false; }
+  void restored() override { impulse_.setZero(); }
 
  private:
   double restitution_;

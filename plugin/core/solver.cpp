@@ -54,16 +54,26 @@ struct Solver::Impl {
   std::unique_ptr<Stepper> stepper;
   double critical_dt = 0;
   long steps = 0, fallbacks = 0;
-  // The user arrays as last returned: a step must start from them.
-  std::vector<double> u_user, v_user;
+  // The user arrays as last returned: a step must start from them. a_user:
+  // the acceleration in user coordinates, as acceleration() hands it out.
+  std::vector<double> u_user, v_user, a_user;
 
   void publish(std::vector<double>& u, std::vector<double>& v) {
     const Vector uu = problem->to_user(stepper->u());
     const Vector vv = problem->to_user(stepper->v());
+    const Vector aa = problem->to_user(stepper->a());
+    if (!problem->exact_round_trip()) {
+      // Exact restarts: the state becomes the one a restart from the user's
+      // arrays rebuilds (rotated contact nodes round off in user coordinates;
+      // the round trip is not idempotent, hence the user arrays are kept).
+      stepper->replace_kinematics(problem->to_internal(uu), problem->to_internal(vv),
+                                  problem->to_internal(aa));
+    }
     u.assign(uu.data(), uu.data() + uu.size());
     v.assign(vv.data(), vv.data() + vv.size());
     u_user = u;
     v_user = v;
+    a_user.assign(aa.data(), aa.data() + aa.size());
   }
 };
 
@@ -158,6 +168,7 @@ bool Solver::initialized() const { return impl_->stepper->initialized(); }
 double Solver::time() const { return impl_->stepper->time(); }
 long Solver::steps() const { return impl_->steps; }
 long Solver::fallbacks() const { return impl_->fallbacks; }
+const ContactProblem& Solver::problem() const { return *impl_->problem; }
 double Solver::critical_dt() const { return impl_->critical_dt; }
 
 void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
@@ -174,6 +185,39 @@ void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
                          "badly scaled");
   impl_->steps = impl_->fallbacks = 0;
   impl_->publish(u, v);
+}
+
+void Solver::restart(std::vector<double>& u, std::vector<double>& v,
+                     const std::vector<double>& F, double t, const std::vector<double>& a,
+                     const std::vector<long>& active) {
+  const ContactProblem& p = *impl_->problem;
+  const long n = p.n_dofs();
+  const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
+  const Vector aa = to_vector(a, n, "a");
+  for (const auto& [x, name] :
+       {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}, {&aa, "a"}})
+    if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
+  if (!std::isfinite(t)) throw InputError("t: non-finite time");
+  if (static_cast<long>(active.size()) != p.n_contact())
+    throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
+                     std::to_string(p.n_contact()) + " (one entry per contact node)");
+  ActiveSet set(active.size());
+  for (std::size_t k = 0; k < active.size(); ++k) {
+    if (active[k] != 0 && active[k] != 1)
+      throw InputError("active: entry " + std::to_string(k) + " is " +
+                       std::to_string(active[k]) + ", expected 0 or 1");
+    set[k] = active[k] == 1;
+  }
+  impl_->stepper->restore(p.to_internal(uu), p.to_internal(vv), p.to_internal(aa), set,
+                          p.to_internal(FF), t);
+  impl_->steps = impl_->fallbacks = 0;
+  // u, v stay as given (fixed dofs zeroed): the internal state is their
+  // image, exactly what the uninterrupted run holds after publish().
+  for (long f : impl_->fixed) u[f] = v[f] = 0.0;
+  impl_->u_user = u;
+  impl_->v_user = v;
+  impl_->a_user = a;
+  for (long f : impl_->fixed) impl_->a_user[f] = 0.0;
 }
 
 StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
@@ -214,10 +258,7 @@ std::vector<long> Solver::active() const {
   const auto& a = impl_->stepper->active();
   return {a.begin(), a.end()};
 }
-std::vector<double> Solver::acceleration() const {
-  const Vector x = impl_->problem->to_user(impl_->stepper->a());
-  return {x.data(), x.data() + x.size()};
-}
+std::vector<double> Solver::acceleration() const { return impl_->a_user; }
 std::vector<double> Solver::energies() const {
   const Energies e = impl_->stepper->energies();
   return {e.kinetic, e.elastic, e.load, e.total()};

@@ -10,6 +10,8 @@
 
 namespace nbm {
 
+class ContactProblem;
+
 /// A sparse matrix in coordinate form, as FreeFEM hands it over. With
 /// `lower_half` only the lower triangle is stored (FreeFEM's sym=1).
 struct CooMatrix {
@@ -74,11 +76,20 @@ class Solver {
   /// Advances u and v in place by dt under the load F at the new time. u and
   /// v must be the arrays the previous call returned (checked).
   StepInfo step(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F);
+  /// Exact restart from a state saved after initialize() or step(): u, v as
+  /// returned, t = time(), a = acceleration(), active = active(), and the
+  /// load F at time t. Nothing is recomputed, so stepping on reproduces the
+  /// uninterrupted run bit for bit. u, v are kept as given (fixed dofs
+  /// zeroed); the step and fallback counters restart from zero.
+  void restart(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
+               double t, const std::vector<double>& a, const std::vector<long>& active);
 
   bool initialized() const;
   double time() const;
   long steps() const;
   long fallbacks() const;
+  /// The contact problem in internal coordinates (periodic-orbit solvers).
+  const ContactProblem& problem() const;
   /// Critical time step of the explicit scheme (0 for the implicit one).
   double critical_dt() const;
 

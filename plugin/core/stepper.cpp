@@ -27,18 +27,22 @@ Stepper::Stepper(const ContactProblem& problem, double dt)
     throw InputError("dt: " + std::to_string(dt) + ", expected a positive finite time step");
 }
 
+void Stepper::check_penetration(const Vector& u, const char* what) const {
+  const Vector gap = boundary_.gaps(u);
+  const double scale = std::max(u.cwiseAbs().maxCoeff(), problem_.gaps().cwiseAbs().maxCoeff());
+  for (Index k = 0; k < gap.size(); ++k)
+    if (gap(k) < -kPenetrationTolerance * scale)
+      throw InputError(std::string("u: ") + what + " penetration at contact node " +
+                       std::to_string(k) + " (gap " + std::to_string(gap(k)) + " < 0)");
+}
+
 void Stepper::initialize(const Vector& u, const Vector& v, const Vector& F, double t) {
   const Index n = problem_.size();
   check_size(u, n, "u");
   check_size(v, n, "v");
   check_size(F, n, "F");
   if (!std::isfinite(t)) throw InputError("t: non-finite initial time");
-  const Vector gap = boundary_.gaps(u);
-  const double scale = std::max(u.cwiseAbs().maxCoeff(), problem_.gaps().cwiseAbs().maxCoeff());
-  for (Index k = 0; k < gap.size(); ++k)
-    if (gap(k) < -kPenetrationTolerance * scale)
-      throw InputError("u: initial penetration at contact node " + std::to_string(k) +
-                       " (gap " + std::to_string(gap(k)) + " < 0)");
+  check_penetration(u, "initial");
   u_ = u;
   v_ = v;
   F_ = F;
@@ -46,6 +50,34 @@ void Stepper::initialize(const Vector& u, const Vector& v, const Vector& F, doub
   a_.resize(n);
   start();
   initialized_ = true;
+}
+
+void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
+                      const Vector& F, double t) {
+  const Index n = problem_.size();
+  check_size(u, n, "u");
+  check_size(v, n, "v");
+  check_size(a, n, "a");
+  check_size(F, n, "F");
+  if (static_cast<Index>(active.size()) != problem_.n_contact())
+    throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
+                     std::to_string(problem_.n_contact()) + " (one entry per contact node)");
+  if (!std::isfinite(t)) throw InputError("t: non-finite time");
+  if (exact_impenetrability()) check_penetration(u, "restored");
+  u_ = u;
+  v_ = v;
+  a_ = a;
+  active_ = active;
+  F_ = F;
+  t_ = t;
+  restored();
+  initialized_ = true;
+}
+
+void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
+  u_ = std::move(u);
+  v_ = std::move(v);
+  a_ = std::move(a);
 }
 
 void Stepper::start() {

@@ -36,6 +36,21 @@ class Stepper {
   /// Advances by dt under the load F at the new time.
   virtual StepReport step(const Vector& F_next) = 0;
 
+  /// Exact restart: restores a state saved after initialize() or step() --
+  /// displacement, velocity, acceleration, active set, the load F at time t --
+  /// as it is (nothing is recomputed), so that stepping on from it reproduces
+  /// the uninterrupted run bit for bit. The steppers keep nothing else between
+  /// steps that affects the results (caches of factorizations per active set
+  /// are pure memoization). Moreau-Jean's last impulse is not part of the
+  /// state: reactions() is zero until the next step. Throws InputError on wrong
+  /// sizes, non-finite entries or, for the NBM schemes, a penetrating u.
+  void restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
+               const Vector& F, double t);
+  /// Overwrites u, v and a (same sizes, unchecked), keeping the rest of the
+  /// state: for a front end that rounds the state through its own coordinates
+  /// after every step, so that a restart from them is exact.
+  void replace_kinematics(Vector u, Vector v, Vector a);
+
   bool initialized() const { return initialized_; }
   double dt() const { return dt_; }
   double time() const { return t_; }
@@ -58,6 +73,13 @@ class Stepper {
   virtual void solve_acceleration(const Vector& F) = 0;
   /// Completes a step: v_C, a_C from the new active set, time advanced.
   void finish_step(const Vector& F_next);
+  /// False for a scheme whose positions may penetrate (Moreau-Jean): its
+  /// restored states are not checked for penetration.
+  virtual bool exact_impenetrability() const { return true; }
+  /// Called at the end of restore(): resets what is not part of the state.
+  virtual void restored() {}
+  /// Throws InputError if u penetrates the obstacle beyond round-off.
+  void check_penetration(const Vector& u, const char* what) const;
 
   const ContactProblem& problem_;
   NodalBoundary boundary_;

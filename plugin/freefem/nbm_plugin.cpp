@@ -8,6 +8,7 @@
 //         restitution = 0);                           // the impact-law peer
 //   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
 //   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
+//   nbmRestart(S, u, v, F, t, a, act); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...
 //
@@ -189,6 +190,23 @@ long nbm_step(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
   return info.active_set_iterations;
 }
 
+// nbmRestart(S, u, v, F, t, a, act): the state saved after nbmInit or nbmStep
+// (u, v, nbmTime, nbmAcceleration, nbmActive), restored as it is.
+long nbm_restart(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+                 KN<double>* const& F, const double& t, KN<double>* const& a,
+                 KN<long>* const& act) {
+  nbm::Solver& S = solver_of(h, "nbmRestart");
+  check_distinct(u, v, "nbmRestart");
+  std::vector<double> uu = vector_of<double>(u, "nbmRestart", "u");
+  std::vector<double> vv = vector_of<double>(v, "nbmRestart", "v");
+  const std::vector<double> FF = vector_of<double>(F, "nbmRestart", "F");
+  const std::vector<double> aa = vector_of<double>(a, "nbmRestart", "a");
+  const std::vector<long> active = vector_of<long>(act, "nbmRestart", "active");
+  guarded("nbmRestart", [&] { S.restart(uu, vv, FF, t, aa, active); });
+  assign(u, uu);
+  assign(v, vv);
+  return 0;
+}
 
 long nbm_reactions(NbmHandle* const& h, KN<double>* const& out) {
   nbm::Solver& S = solver_of(h, "nbmReactions");
@@ -238,6 +256,8 @@ void Load_Init() {
   using R = KN<double>*;
   Global.Add("nbmInit", "(", new OneOperator4_<long, H, R, R, R>(nbm_init));
   Global.Add("nbmStep", "(", new OneOperator4_<long, H, R, R, R>(nbm_step));
+  Global.Add("nbmRestart", "(",
+             new OneOperator7_<long, H, R, R, R, double, R, KN<long>*>(nbm_restart));
   Global.Add("nbmReactions", "(", new OneOperator2_<long, H, R>(nbm_reactions));
   Global.Add("nbmGaps", "(", new OneOperator2_<long, H, R>(nbm_gaps));
   Global.Add("nbmActive", "(", new OneOperator2_<long, H, KN<long>*>(nbm_active));

@@ -162,6 +162,21 @@ inline nbm::ContactDescription ground_contact(double gap = 0) {
   return c;
 }
 
+/// Node coordinates of every user dof, one row per dof (the `positions` of
+/// the mass redistribution): x for the bar, (x, y) for the plate.
+inline Eigen::MatrixXd node_positions(const Bar& b) {
+  Eigen::MatrixXd X(b.n_dofs(), 1);
+  for (int i = 0; i < b.n_dofs(); ++i) X(i, 0) = i * b.h();
+  return X;
+}
+inline Eigen::MatrixXd node_positions(const Plate& p) {
+  Eigen::MatrixXd X(p.n_dofs(), 2);
+  for (int j = 0; j <= p.ny; ++j)
+    for (int i = 0; i <= p.nx; ++i)
+      for (int c = 0; c < 2; ++c) X.row(2 * p.node(i, j) + c) = p.position(i, j).transpose();
+  return X;
+}
+
 // ----------------------------------------------------------- conversions
 
 /// Coordinate form of a sparse matrix, full or lower triangle only.

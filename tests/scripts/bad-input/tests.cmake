@@ -25,6 +25,7 @@ nbm_bad_valid(valid-newmark ${NBM_BAD_DIR}/cases.edp -case valid-newmark)
 nbm_bad_valid(valid-explicit ${NBM_BAD_DIR}/cases.edp -case valid-explicit)
 nbm_bad_valid(valid-redistributed ${NBM_BAD_DIR}/cases.edp -case valid-redistributed)
 nbm_bad_valid(valid-moreau-jean ${NBM_BAD_DIR}/cases.edp -case valid-moreau-jean)
+nbm_bad_valid(valid-restart ${NBM_BAD_DIR}/cases.edp -case valid-restart)
 nbm_bad_valid(plane-valid-newmark ${NBM_BAD_DIR}/plane.edp -case valid-newmark)
 nbm_bad_valid(plane-valid-explicit ${NBM_BAD_DIR}/plane.edp -case valid-explicit)
 
@@ -99,6 +100,20 @@ nbm_bad_case(step-u-resized [=[nbmStep: u: size 12, expected 11]=])
 nbm_bad_case(step-v-size [=[nbmStep: v: size 10, expected 11]=])
 nbm_bad_case(step-u-modified [=[nbmStep: u, v: changed since the last step]=])
 nbm_bad_case(step-same-array [=[nbmStep: .*u.*v.*same array]=])
+
+# ---- nbmRestart ----
+nbm_bad_case(restart-unconstructed [=[nbmRestart: the NBM object was not constructed]=])
+nbm_bad_case(restart-u-size [=[nbmRestart: u: size 10, expected 11]=])
+nbm_bad_case(restart-F-size [=[nbmRestart: F: size 10, expected 11]=])
+nbm_bad_case(restart-a-size [=[nbmRestart: a: size 0, expected 11]=])
+nbm_bad_case(restart-a-nan [=[nbmRestart: a: non-finite entries]=])
+nbm_bad_case(restart-v-inf [=[nbmRestart: v: non-finite entries]=])
+nbm_bad_case(restart-t-nan [=[nbmRestart: t: non-finite time]=])
+nbm_bad_case(restart-active-size [=[nbmRestart: active: size 2, expected 1 \(one entry per contact node\)]=])
+nbm_bad_case(restart-active-value [=[nbmRestart: active: entry 0 is 2, expected 0 or 1]=])
+nbm_bad_case(restart-penetration [=[nbmRestart: u: restored penetration at contact node 0 \(gap -0\.10*]=])
+nbm_bad_case(restart-same-array [=[nbmRestart: .*u.*v.*same array]=])
+nbm_bad_case(restart-then-modified [=[nbmStep: u, v: changed since the last step]=])
 
 # ---- getters before nbmInit ----
 nbm_bad_case(reactions-before-init [=[nbmReactions: call nbmInit first]=])
