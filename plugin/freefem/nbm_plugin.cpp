@@ -14,80 +14,11 @@
 //
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
-#include <exception>
-#include <string>
-#include <vector>
+#include "binding.hpp"
 
-#include "ff++.hpp"
-#include "AFunction_ext.hpp"
-#include "solver.hpp"
-
-using namespace Fem2D;
+using namespace nbm_binding;
 
 namespace {
-
-// The script-side object: one pointer, null until constructed.
-struct NbmHandle {
-  nbm::Solver* solver;
-  void init() { solver = nullptr; }
-  void destroy() {
-    delete solver;
-    solver = nullptr;
-  }
-};
-
-[[noreturn]] void fail(const std::string& what) { ExecError("nbm: " + what); throw 0; }
-
-// Runs f, turning core exceptions into ExecError with their message.
-template <class F>
-auto guarded(const char* function, F&& f) -> decltype(f()) {
-  try {
-    return f();
-  } catch (const std::exception& e) {
-    fail(std::string(function) + ": " + e.what());
-  }
-}
-
-nbm::Solver& solver_of(NbmHandle* h, const char* function) {
-  if (!h || !h->solver)
-    fail(std::string(function) + ": the NBM object was not constructed (declare it as "
-         "NBM S(M, K, cdofs, normals, gaps, dt=...))");
-  return *h->solver;
-}
-
-nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* name) {
-  if (!A || !A->pHM())
-    fail(std::string("NBM: matrix ") + name + " is empty or not an assembled sparse matrix");
-  const HashMatrix<int, double>& H = *A->pHM();
-  nbm::CooMatrix coo;
-  coo.rows = H.n;
-  coo.cols = H.m;
-  coo.lower_half = H.half != 0;
-  coo.i.resize(H.nnz);
-  coo.j.resize(H.nnz);
-  coo.value.resize(H.nnz);
-  const int base = H.fortran;
-  for (size_t k = 0; k < H.nnz; ++k) {
-    coo.i[k] = H.i[k] - base;
-    coo.j[k] = H.j[k] - base;
-    coo.value[k] = H.aij[k];
-  }
-  return coo;
-}
-
-template <class T, class K>
-std::vector<T> vector_of(KN<K>* x, const char* function, const char* name) {
-  if (!x) fail(std::string(function) + ": array " + name + " is missing");
-  std::vector<T> v(x->N());
-  for (long i = 0; i < x->N(); ++i) v[i] = static_cast<T>((*x)[i]);
-  return v;
-}
-
-template <class K, class T>
-void assign(KN<K>* x, const std::vector<T>& v) {
-  if (x->N() != static_cast<long>(v.size())) x->resize(v.size());
-  for (long i = 0; i < static_cast<long>(v.size()); ++i) (*x)[i] = static_cast<K>(v[i]);
-}
 
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
@@ -268,6 +199,7 @@ void Load_Init() {
   Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
   Global.Add("nbmContactNodes", "(", new OneOperator1_<long, H>(nbm_n_contact));
+  load_orbit_functions();
 }
 
 }  // namespace

@@ -208,8 +208,11 @@ double ReducedField::complementarity_residual(const Vector& u) const {
   const Vector lambda = F_(contact_) - Kx;
   const double gap_scale = std::max({g_.cwiseAbs().maxCoeff(), x(contact_).cwiseAbs().maxCoeff(),
                                      1e-300});
+  // The size of the terms lambda is computed from, not of lambda itself
+  // (which vanishes on open contacts).
+  const Vector terms = K_(contact_, Eigen::all).cwiseAbs() * x.cwiseAbs();
   const double force_scale = std::max({F_(contact_).cwiseAbs().maxCoeff(),
-                                       Kx.cwiseAbs().maxCoeff(), 1e-300});
+                                       terms.maxCoeff(), 1e-300});
   double r = 0;
   for (Index k = 0; k < n_contact(); ++k)
     r = std::max(r, std::abs(std::min(gap(k) / gap_scale, lambda(k) / force_scale)));

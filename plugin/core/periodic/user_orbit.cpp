@@ -1,5 +1,6 @@
 #include "user_orbit.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 

@@ -1,0 +1,94 @@
+// Shared pieces of the FreeFEM binding (nbm_plugin.cpp, orbit_functions.cpp):
+// the script-side handle of the NBM object and the conversions and error
+// handling every function uses. Only the binding sees FreeFEM headers.
+#pragma once
+
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "ff++.hpp"
+#include "AFunction_ext.hpp"
+#include "solver.hpp"
+#include "user_orbit.hpp"
+
+using namespace Fem2D;
+
+namespace nbm_binding {
+
+// The script-side object: the solver, null until constructed, and the last
+// periodic orbit computed on it.
+struct NbmHandle {
+  nbm::Solver* solver;
+  nbm::OrbitReport* orbit;         // the last periodic orbit (orbit_functions.cpp)
+  std::vector<double>* orbit_load;  // and its load
+  void init() {
+    solver = nullptr;
+    orbit = nullptr;
+    orbit_load = nullptr;
+  }
+  void destroy() {
+    delete solver;
+    delete orbit;
+    delete orbit_load;
+    init();
+  }
+};
+
+[[noreturn]] inline void fail(const std::string& what) { ExecError("nbm: " + what); throw 0; }
+
+// Runs f, turning core exceptions into ExecError with their message.
+template <class F>
+auto guarded(const char* function, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const std::exception& e) {
+    fail(std::string(function) + ": " + e.what());
+  }
+}
+
+inline nbm::Solver& solver_of(NbmHandle* h, const char* function) {
+  if (!h || !h->solver)
+    fail(std::string(function) + ": the NBM object was not constructed (declare it as "
+         "NBM S(M, K, cdofs, normals, gaps, dt=...))");
+  return *h->solver;
+}
+
+inline nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* name) {
+  if (!A || !A->pHM())
+    fail(std::string("NBM: matrix ") + name + " is empty or not an assembled sparse matrix");
+  const HashMatrix<int, double>& H = *A->pHM();
+  nbm::CooMatrix coo;
+  coo.rows = H.n;
+  coo.cols = H.m;
+  coo.lower_half = H.half != 0;
+  coo.i.resize(H.nnz);
+  coo.j.resize(H.nnz);
+  coo.value.resize(H.nnz);
+  const int base = H.fortran;
+  for (size_t k = 0; k < H.nnz; ++k) {
+    coo.i[k] = H.i[k] - base;
+    coo.j[k] = H.j[k] - base;
+    coo.value[k] = H.aij[k];
+  }
+  return coo;
+}
+
+template <class T, class K>
+std::vector<T> vector_of(KN<K>* x, const char* function, const char* name) {
+  if (!x) fail(std::string(function) + ": array " + name + " is missing");
+  std::vector<T> v(x->N());
+  for (long i = 0; i < x->N(); ++i) v[i] = static_cast<T>((*x)[i]);
+  return v;
+}
+
+template <class K, class T>
+void assign(KN<K>* x, const std::vector<T>& v) {
+  if (x->N() != static_cast<long>(v.size())) x->resize(v.size());
+  for (long i = 0; i < static_cast<long>(v.size()); ++i) (*x)[i] = static_cast<K>(v[i]);
+}
+
+/// Registers the periodic-orbit functions (orbit_functions.cpp).
+void load_orbit_functions();
+
+}  // namespace nbm_binding
