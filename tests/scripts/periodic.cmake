@@ -1,0 +1,55 @@
+# Script tests of the periodic-orbit API (issue: periodic solutions): the
+# clamped plate example (edp/cantilever-plate-periodic.edp) with both mass
+# treatments, checked on the summary line it prints.
+set(NBM_CHECK_SUMMARY ${CMAKE_CURRENT_SOURCE_DIR}/periodic/check-summary.sh)
+function(nbm_summary_test name checks script)
+  add_test(NAME script.${name}
+    COMMAND bash ${NBM_CHECK_SUMMARY} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${checks} ${script} ${ARGN}
+    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+  set_tests_properties(script.${name} PROPERTIES TIMEOUT 600 LABELS "script;periodic")
+endfunction()
+set(CANTILEVER ${PROJECT_SOURCE_DIR}/edp/cantilever-plate-periodic.edp)
+
+# Massless boundary: shooting converges to a periodicity residual <= 1e-10,
+# complementarity holds to 1e-12, the trivial Floquet multiplier is 1 to
+# 1e-8, harmonic balance (H = 40) agrees on the period to 1e-6, the exact
+# flow stays on the orbit for ten periods and the Newmark integrator
+# (400 steps per period) drifts by less than 2% of the amplitude.
+nbm_summary_test(cantilever-periodic-massless
+  "periodicity<=1e-10 complementarity<=1e-12 trivialMultiplier<=1e-8 periodDifference<=1e-6 switches>=2 contactTime>=1e-3 driftExact<=1e-9 driftNewmark<=0.02"
+  ${CANTILEVER} -out cantilever-massless -frames 2 -samples 20)
+# Another parameter set: stiffer, thicker, finer mesh, larger gap.
+nbm_summary_test(cantilever-periodic-massless-2
+  "periodicity<=1e-10 complementarity<=1e-12 trivialMultiplier<=1e-8 periodDifference<=1e-6 switches>=2 driftExact<=1e-9"
+  ${CANTILEVER} -out cantilever-massless-2 -frames 2 -samples 20 -E 5000 -H 0.3 -lc 0.15 -gap 0.05 -tau 0.3 -harmonics 60)
+# Paper NBM (mass on the contact nodes): accelerations jump at switches, so
+# harmonic balance converges like 1/H: agreement to 1e-3 at H = 40.
+nbm_summary_test(cantilever-periodic-consistent
+  "periodicity<=1e-10 complementarity<=1e-12 periodDifference<=1e-3 switches>=2 driftExact<=1e-9"
+  ${CANTILEVER} -out cantilever-consistent -frames 2 -samples 20 -mass consistent -condition displacement -tau 0.3)
+
+# Bad input of the periodic-orbit API: each call ends in an ExecError naming
+# the argument (tests/scripts/periodic/orbit-cases.edp).
+set(NBM_ORBIT_CASES ${CMAKE_CURRENT_SOURCE_DIR}/periodic/orbit-cases.edp)
+nbm_bad_valid(orbit-valid ${NBM_ORBIT_CASES} -case valid)
+function(nbm_bad_orbit_case name regex)
+  nbm_bad_input_test(orbit-${name} ${regex} ${NBM_ORBIT_CASES} -case ${name})
+endfunction()
+nbm_bad_orbit_case(before-orbit [[nbmOrbitMultipliers: no periodic orbit computed yet]])
+nbm_bad_orbit_case(u-size [[nbmPeriodicOrbit: u: size 5, expected]])
+nbm_bad_orbit_case(F-size [[nbmPeriodicOrbit: F: size 5, expected]])
+nbm_bad_orbit_case(u-nan [[nbmPeriodicOrbit: u: non-finite]])
+nbm_bad_orbit_case(period [[nbmPeriodicOrbit: T: the period guess must be finite and > 0]])
+nbm_bad_orbit_case(method [[nbmPeriodicOrbit: method: "newton".*expected]])
+nbm_bad_orbit_case(condition [[nbmPeriodicOrbit: condition: "phase".*expected]])
+nbm_bad_orbit_case(probe-range [[nbmPeriodicOrbit: probe: dof [0-9]+ out of range]])
+nbm_bad_orbit_case(probe-contact [[nbmPeriodicOrbit: probe: dof [0-9]+ is fixed or the normal component of a contact node]])
+nbm_bad_orbit_case(probe-fixed [[nbmPeriodicOrbit: probe: dof 0 is fixed]])
+nbm_bad_orbit_case(harmonics [[nbmPeriodicOrbit: harmonics: 0.*expected 1 .. 320]])
+nbm_bad_orbit_case(integration [[nbmPeriodicOrbit: integration: "fft".*expected]])
+nbm_bad_orbit_case(iterations [[nbmPeriodicOrbit: iterations: expected >= 1]])
+nbm_bad_orbit_case(same-array [[nbmPeriodicOrbit: u and v must be different arrays]])
+nbm_bad_orbit_case(no-convergence [[nbmPeriodicOrbit: shooting: no convergence in 2 Newton iterations]])
+nbm_bad_orbit_case(harmonics-after-shooting [[nbmOrbitHarmonics: the last orbit was not computed by harmonic balance]])
+nbm_bad_orbit_case(state-time [[nbmOrbitState: t: expected a time >= 0]])
+nbm_bad_orbit_case(unconstructed [[nbmPeriodicOrbit: the NBM object was not constructed]])
