@@ -20,17 +20,14 @@ namespace nbm_binding {
 // periodic orbit computed on it.
 struct NbmHandle {
   nbm::Solver* solver;
-  nbm::OrbitReport* orbit;         // the last periodic orbit (orbit_functions.cpp)
-  std::vector<double>* orbit_load;  // and its load
+  nbm::OrbitReport* orbit;  // the last periodic orbit (orbit_functions.cpp)
   void init() {
     solver = nullptr;
     orbit = nullptr;
-    orbit_load = nullptr;
   }
   void destroy() {
+    delete orbit;  // refers to the solver's problem: goes first
     delete solver;
-    delete orbit;
-    delete orbit_load;
     init();
   }
 };

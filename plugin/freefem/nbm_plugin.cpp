@@ -53,7 +53,7 @@ class NbmConstruct : public E_F0mps {
     const nbm::CooMatrix Mc = coo_of(GetAny<Matrice_Creuse<double>*>((*M)(s)), "M");
     const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*K)(s)), "K");
     nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
-    delete h->solver;
+    h->destroy();  // the old solver and any orbit computed on it
     h->solver = solver;
     return h;
   }

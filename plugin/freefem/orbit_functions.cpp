@@ -7,12 +7,13 @@
 //              half = true,                              // shooting from a state at rest
 //              harmonics = 20, cosine = true,            // harmonic balance
 //              integration = "exact", adaptive = false, truncation = 1e-6,
-//              iterations = 50);
+//              iterations = 50, modes = 0);           // modes > 0: reduced basis
 //   // u, v now hold the orbit's state at t = 0; then, on the last orbit:
 //   nbmOrbitState(S, t, u, v);        // the state at time t (exact flow)
 //   nbmOrbitMultipliers(S, re, im);   // Floquet multipliers
 //   nbmOrbitResiduals(S, r);          // periodicity, complementarity, trivial
-//                                     // multiplier, Galerkin residual, truncation
+//                                     // multiplier, Galerkin residual, truncation,
+//                                     // reduction (full-model residual, modes > 0)
 //   nbmOrbitEnergies(S, e);           // kinetic, elastic, load, total at t = 0
 //   real tc = nbmOrbitContactTime(S); int s = nbmOrbitSwitches(S);
 //   int st = nbmOrbitStable(S);
@@ -37,7 +38,7 @@ const nbm::OrbitReport& orbit_of(NbmHandle* h, const char* function) {
 
 class PeriodicOrbit : public E_F0mps {
  public:
-  static const int n_name_param = 11;
+  static const int n_name_param = 12;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, u, v, T, F;
@@ -66,6 +67,7 @@ class PeriodicOrbit : public E_F0mps {
     if (nargs[8]) o.adaptive = GetAny<bool>((*nargs[8])(s));
     if (nargs[9]) o.truncation_tolerance = GetAny<double>((*nargs[9])(s));
     if (nargs[10]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[10])(s)));
+    if (nargs[11]) o.modes = static_cast<int>(GetAny<long>((*nargs[11])(s)));
     const std::vector<double> uu = vector_of<double>(U, fn, "u");
     const std::vector<double> vv = vector_of<double>(V, fn, "v");
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
@@ -75,8 +77,6 @@ class PeriodicOrbit : public E_F0mps {
     });
     delete h->orbit;
     h->orbit = new nbm::OrbitReport(std::move(report));
-    delete h->orbit_load;
-    h->orbit_load = new std::vector<double>(FF);
     assign(U, h->orbit->u0);
     assign(V, h->orbit->v0);
     return SetAny<double>(h->orbit->period);
@@ -90,7 +90,7 @@ basicAC_F0::name_and_type PeriodicOrbit::name_param[] = {
     {"half", &typeid(bool)},        {"harmonics", &typeid(long)},
     {"cosine", &typeid(bool)},      {"integration", &typeid(string*)},
     {"adaptive", &typeid(bool)},    {"truncation", &typeid(double)},
-    {"iterations", &typeid(long)},
+    {"iterations", &typeid(long)},  {"modes", &typeid(long)},
 };
 
 class PeriodicOrbitOp : public OneOperator {
@@ -112,7 +112,7 @@ long orbit_state(NbmHandle* const& h, const double& t, KN<double>* const& u,
   if (u == v) fail(std::string(fn) + ": u and v must be different arrays");
   if (!(t >= 0) || !std::isfinite(t)) fail(std::string(fn) + ": t: expected a time >= 0");
   std::vector<std::vector<double>> us, vs;
-  guarded(fn, [&] { nbm::orbit_states(h->solver->problem(), *h->orbit_load, o, {t}, us, vs); });
+  guarded(fn, [&] { nbm::orbit_states(o, {t}, us, vs); });
   assign(u, us[0]);
   assign(v, vs[0]);
   return 0;
@@ -128,8 +128,9 @@ long orbit_multipliers(NbmHandle* const& h, KN<double>* const& re, KN<double>* c
 long orbit_residuals(NbmHandle* const& h, KN<double>* const& r) {
   const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitResiduals");
   assign(r, std::vector<double>{o.periodicity_residual, o.complementarity_residual,
-                                o.trivial_residual, o.balance_residual, o.truncation});
-  return 5;
+                                o.trivial_residual, o.balance_residual, o.truncation,
+                                o.reduction_residual});
+  return 6;
 }
 
 long orbit_energies(NbmHandle* const& h, KN<double>* const& e) {

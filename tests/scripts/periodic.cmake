@@ -29,12 +29,17 @@ nbm_summary_test(cantilever-periodic-consistent
   ${CANTILEVER} -out cantilever-consistent -frames 2 -samples 20 -mass consistent -condition displacement -tau 0.3)
 
 # Bad input of the periodic-orbit API: each call ends in an ExecError naming
-# the argument (tests/scripts/periodic/orbit-cases.edp).
+# the argument (tests/scripts/periodic/orbit-cases.edp); the valid runs use
+# every function, with and without a reduced basis.
 set(NBM_ORBIT_CASES ${CMAKE_CURRENT_SOURCE_DIR}/periodic/orbit-cases.edp)
 nbm_bad_valid(orbit-valid ${NBM_ORBIT_CASES} -case valid)
+nbm_bad_valid(orbit-valid-modes ${NBM_ORBIT_CASES} -case valid-modes)
 function(nbm_bad_orbit_case name regex)
   nbm_bad_input_test(orbit-${name} ${regex} ${NBM_ORBIT_CASES} -case ${name})
 endfunction()
+nbm_bad_orbit_case(modes [[nbmPeriodicOrbit: modes: expected >= 0]])
+nbm_bad_orbit_case(modes-probe [[nbmPeriodicOrbit: probe: not available with modes > 0]])
+nbm_bad_orbit_case(modes-range [[nbmPeriodicOrbit: modes: 1000.*expected 1 .. [0-9]+]])
 nbm_bad_orbit_case(before-orbit [[nbmOrbitMultipliers: no periodic orbit computed yet]])
 nbm_bad_orbit_case(u-size [[nbmPeriodicOrbit: u: size 5, expected]])
 nbm_bad_orbit_case(F-size [[nbmPeriodicOrbit: F: size 5, expected]])

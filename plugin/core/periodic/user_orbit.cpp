@@ -7,6 +7,7 @@
 #include "contact_problem.hpp"
 #include "errors.hpp"
 #include "harmonic_balance.hpp"
+#include "reduced_basis.hpp"
 #include "shooting.hpp"
 
 namespace nbm {
@@ -50,6 +51,46 @@ Index interior_position(const ContactProblem& p, const ReducedField& field, long
 
 }  // namespace
 
+// The field an orbit lives on and the maps between its unknowns and the
+// user's vectors: the interior unknowns u_O, or the coordinates q of a
+// reduced basis (u_O = V q).
+struct OrbitModel {
+  const ContactProblem& problem;
+  std::unique_ptr<ReducedField> full;
+  std::unique_ptr<ReducedBasis> basis;
+  std::vector<Index> interior;  ///< internal indices of the interior dofs
+
+  explicit OrbitModel(const ContactProblem& p) : problem(p) {
+    std::vector<char> is_contact(p.size(), 0);
+    for (Index c : p.contact_index()) is_contact[c] = 1;
+    for (Index i = 0; i < p.size(); ++i)
+      if (!is_contact[i]) interior.push_back(i);
+  }
+  const ReducedField& field() const { return basis ? basis->field() : *full; }
+  /// Field unknowns of a user displacement (or velocity).
+  Vector unknowns(const Vector& user) const {
+    const Vector x = problem.to_internal(user);
+    return basis ? basis->reduce(x(interior)) : full->restrict(x);
+  }
+  /// Internal vector of interior values (contact dofs zero).
+  Vector internal(const Vector& interior_values) const {
+    Vector x = Vector::Zero(problem.size());
+    x(interior) = interior_values;
+    return x;
+  }
+  /// User vector of field unknowns: displacement (contact dofs from the
+  /// nodal boundary relation) or, with `v` given, the velocity.
+  Vector user(const Vector& u, const Vector* v = nullptr) const {
+    const ReducedField& f = field();
+    const Vector y = v ? f.expand_velocity(u, *v) : f.expand(u);
+    if (!basis) return problem.to_user(y);
+    const Index r = basis->size();
+    Vector x = internal(basis->expand(y.head(r)));
+    x(problem.contact_index()) = y.tail(problem.n_contact());
+    return problem.to_user(x);
+  }
+};
+
 OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<double>& F,
                            const std::vector<double>& u, const std::vector<double>& v, double T,
                            const OrbitOptions& o) {
@@ -69,14 +110,24 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   if (!(o.truncation_tolerance > 0)) throw InputError("truncation: expected > 0");
   const auto kind = condition_of(o.condition);
   const Index interior = problem.size() - problem.n_contact();
-  if (interior > kMaxInteriorDofs)
+  if (o.modes < 0) throw InputError("modes: expected >= 0");
+  if (o.modes == 0 && interior > kMaxInteriorDofs)
     throw InputError("the model has " + std::to_string(interior) +
-                     " interior dofs; the periodic-orbit solvers use dense matrices and accept "
-                     "at most " + std::to_string(kMaxInteriorDofs) + " (use a coarser mesh)");
+                     " interior dofs; without a reduced basis the periodic-orbit solvers accept "
+                     "at most " + std::to_string(kMaxInteriorDofs) +
+                     " (use modes = m for a reduced basis, or a coarser mesh)");
+  if (o.modes > 0 && o.probe >= 0)
+    throw InputError("probe: not available with modes > 0 (the phase and displacement "
+                     "conditions then use the reduced coordinate of largest amplitude)");
 
-  const ReducedField field = ReducedField::from(problem, problem.to_internal(FF));
-  const Vector u0 = field.restrict(problem.to_internal(uu));
-  const Vector v0 = field.restrict(problem.to_internal(vv));
+  auto model = std::make_shared<OrbitModel>(problem);
+  const Vector F_internal = problem.to_internal(FF);
+  if (o.modes > 0)
+    model->basis = std::make_unique<ReducedBasis>(problem, F_internal, o.modes);
+  else
+    model->full = std::make_unique<ReducedField>(ReducedField::from(problem, F_internal));
+  const ReducedField& field = model->field();
+  const Vector u0 = model->unknowns(uu), v0 = model->unknowns(vv);
   Index probe = 0;
   if (o.probe >= 0)
     probe = interior_position(problem, field, o.probe);
@@ -106,12 +157,14 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
     report.harmonics = r.harmonics;
     report.balance_residual = r.residual;
     report.truncation = r.truncation;
+    // Coefficients of the interior unknowns in user coordinates (contact
+    // normal components, which are slaved, left at zero).
     const Index cols = r.coefficients.cols();
     report.coefficients.assign(static_cast<std::size_t>(N * cols), 0.0);
     for (Index k = 0; k < cols; ++k) {
-      Vector x = Vector::Zero(problem.size());
-      x(field.interior()) = r.coefficients.col(k);
-      const Vector user = problem.to_user(x);
+      const Vector ck = r.coefficients.col(k);
+      const Vector user =
+          problem.to_user(model->internal(model->basis ? model->basis->expand(ck) : ck));
       for (Index i = 0; i < N; ++i) report.coefficients[i * cols + k] = user(i);
     }
     extra << "method harmonic balance (" << (o.cosine_only ? "cosine only" : "cosine and sine")
@@ -119,8 +172,25 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
           << "Galerkin residual " << r.residual << ", truncation estimate " << r.truncation << "\n";
   }
   report.period = orbit.period;
-  report.u0 = to_std(problem.to_user(field.expand(orbit.u0)));
-  report.v0 = to_std(problem.to_user(field.expand_velocity(orbit.u0, orbit.v0)));
+  report.u0 = to_std(model->user(orbit.u0));
+  report.v0 = to_std(model->user(orbit.u0, &orbit.v0));
+  if (model->basis) {
+    // Reduction error: the full model's residual along the orbit.
+    std::vector<double> times(64);
+    for (int k = 0; k < 64; ++k) times[k] = orbit.period * k / 64;
+    const FlowResult r = ExactFlow(field).integrate(orbit.u0, orbit.v0, orbit.period, false, times);
+    const Index n = field.size();
+    for (Index k = 0; k < r.samples.cols(); ++k) {
+      const Vector q = r.samples.col(k).head(n);
+      report.reduction_residual = std::max(report.reduction_residual,
+                                           model->basis->full_residual(q, field.acceleration(q)));
+    }
+    report.cutoff_ratio = model->basis->cutoff_frequency() * orbit.period / (2 * M_PI);
+    extra << "reduced basis: " << o.modes << " fixed-interface modes + " << problem.n_contact()
+          << " contact shapes (" << n << " unknowns), cutoff frequency " << report.cutoff_ratio
+          << " x the orbit's, full-model residual along the orbit " << report.reduction_residual
+          << "\n";
+  }
   report.energies = {orbit.energy_start(0), orbit.energy_start(1), orbit.energy_start(2),
                      orbit.energy_start(3)};
   report.energy_change = orbit.energy_end(3) - orbit.energy_start(3);
@@ -139,27 +209,29 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                    (field.massless_boundary() ? "redistributed (massless boundary)"
                                               : "consistent (paper NBM)") +
                    "\n" + summary(orbit);
+  report.model = std::move(model);
   return report;
 }
 
-void orbit_states(const ContactProblem& problem, const std::vector<double>& F,
-                  const OrbitReport& orbit, const std::vector<double>& times,
+void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,
                   std::vector<std::vector<double>>& u, std::vector<std::vector<double>>& v) {
-  const Index N = problem.n_dofs();
-  const ReducedField field = ReducedField::from(problem, problem.to_internal(user_vector(F, N, "F")));
+  if (!orbit.model) throw InputError("orbit: no periodic orbit");
   for (std::size_t k = 0; k < times.size(); ++k)
     if (!(times[k] >= 0) || (k > 0 && times[k] < times[k - 1]))
       throw InputError("times: expected sorted non-negative times");
-  const Vector u0 = field.restrict(problem.to_internal(user_vector(orbit.u0, N, "u0")));
-  const Vector v0 = field.restrict(problem.to_internal(user_vector(orbit.v0, N, "v0")));
+  const OrbitModel& m = *orbit.model;
+  const ReducedField& field = m.field();
+  const Index N = m.problem.n_dofs();
+  const Vector u0 = m.unknowns(user_vector(orbit.u0, N, "u0"));
+  const Vector v0 = m.unknowns(user_vector(orbit.v0, N, "v0"));
   const Index n = field.size();
   const double end = times.empty() ? 0 : times.back();
   const FlowResult r = ExactFlow(field).integrate(u0, v0, end, false, times);
   u.clear(), v.clear();
   for (Index k = 0; k < r.samples.cols(); ++k) {
     const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);
-    u.push_back(to_std(problem.to_user(field.expand(uk))));
-    v.push_back(to_std(problem.to_user(field.expand_velocity(uk, vk))));
+    u.push_back(to_std(m.user(uk)));
+    v.push_back(to_std(m.user(uk, &vk)));
   }
 }
 

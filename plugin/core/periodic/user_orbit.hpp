@@ -4,12 +4,15 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace nbm {
 
 class ContactProblem;
+/// The reduced equations an orbit lives on (full or on a reduced basis).
+struct OrbitModel;
 
 struct OrbitOptions {
   std::string method = "shooting";  ///< "shooting" or "harmonic-balance"
@@ -28,6 +31,9 @@ struct OrbitOptions {
   bool adaptive = false;              ///< harmonic balance: double H until truncation <= tol
   double truncation_tolerance = 1e-6;
   int max_iterations = 50;
+  /// Reduced basis (reduced_basis.hpp): this many fixed-interface modes plus
+  /// the static contact shapes; 0: the full interior (at most 3000 dofs).
+  int modes = 0;
 };
 
 struct OrbitReport {
@@ -46,7 +52,12 @@ struct OrbitReport {
   double balance_residual = 0, truncation = 0;
   /// User dof i, column k of (c0, a1, b1, a2, b2, ...): coefficients[i * (2H+1) + k].
   std::vector<double> coefficients;
+  /// With a reduced basis: the largest relative residual of the full
+  /// model's reduced equations along the orbit (the reduction error), and
+  /// the retained cutoff frequency times T / (2 pi).
+  double reduction_residual = 0, cutoff_ratio = 0;
   std::string summary;
+  std::shared_ptr<const OrbitModel> model;  ///< for orbit_states
 };
 
 /// Computes a periodic orbit of the reduced NBM equations of `problem`
@@ -58,9 +69,8 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                            const OrbitOptions& options);
 
 /// The user displacement (and velocity) along the orbit at the given times
-/// (exact flow from the report's initial state), one vector per time.
-void orbit_states(const ContactProblem& problem, const std::vector<double>& F,
-                  const OrbitReport& orbit, const std::vector<double>& times,
+/// (exact flow from the orbit's initial state), one vector per time.
+void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,
                   std::vector<std::vector<double>>& u, std::vector<std::vector<double>>& v);
 
 }  // namespace nbm

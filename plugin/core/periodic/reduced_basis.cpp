@@ -1,0 +1,138 @@
+#include "reduced_basis.hpp"
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/SparseCholesky>
+
+#include "errors.hpp"
+
+namespace nbm {
+namespace {
+
+SparseMatrix block(const SparseMatrix& A, const std::vector<Index>& rows,
+                   const std::vector<Index>& cols) {
+  std::vector<Index> col_pos(A.cols(), -1), row_pos(A.rows(), -1);
+  for (std::size_t k = 0; k < cols.size(); ++k) col_pos[cols[k]] = static_cast<Index>(k);
+  for (std::size_t k = 0; k < rows.size(); ++k) row_pos[rows[k]] = static_cast<Index>(k);
+  std::vector<Triplet> t;
+  for (Index j = 0; j < A.outerSize(); ++j)
+    if (col_pos[j] >= 0)
+      for (SparseMatrix::InnerIterator it(A, j); it; ++it)
+        if (row_pos[it.row()] >= 0)
+          t.emplace_back(static_cast<int>(row_pos[it.row()]), static_cast<int>(col_pos[j]),
+                         it.value());
+  SparseMatrix B(static_cast<Index>(rows.size()), static_cast<Index>(cols.size()));
+  B.setFromTriplets(t.begin(), t.end());
+  return B;
+}
+
+}  // namespace
+
+ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int modes)
+    : problem_(problem), F_(F) {
+  const Index N = problem.size();
+  contact_ = problem.contact_index();
+  std::vector<char> is_contact(N, 0);
+  for (Index c : contact_) is_contact[c] = 1;
+  for (Index i = 0; i < N; ++i)
+    if (!is_contact[i]) interior_.push_back(i);
+  const Index n = static_cast<Index>(interior_.size()), nc = static_cast<Index>(contact_.size());
+  if (modes < 1 || modes > n)
+    throw InputError("modes: " + std::to_string(modes) + "; expected 1 .. " + std::to_string(n) +
+                     " (the number of interior dofs)");
+
+  const SparseMatrix KOO = block(problem.K(), interior_, interior_);
+  const SparseMatrix MOO = block(problem.M(), interior_, interior_);
+  const SparseMatrix KOC = block(problem.K(), interior_, contact_);
+  Eigen::SimplicialLLT<SparseMatrix> KOO_inv(KOO);
+  if (KOO_inv.info() != Eigen::Success)
+    throw NumericalError("reduced basis: K_OO (contact dofs clamped) is not positive definite");
+
+  // Lowest fixed-interface modes by subspace iteration with Rayleigh-Ritz.
+  const Index p = std::min<Index>(n, std::max<Index>(2 * modes, modes + 8));
+  std::mt19937 rng(1);
+  std::normal_distribution<double> normal;
+  Matrix X(n, p);
+  for (Index j = 0; j < p; ++j)
+    for (Index i = 0; i < n; ++i) X(i, j) = normal(rng);
+  Vector previous = Vector::Constant(modes, -1);
+  Matrix Phi;
+  Vector w2;
+  for (int it = 0;; ++it) {
+    const Matrix Y = KOO_inv.solve(MOO * X);
+    const Matrix Kr = Y.transpose() * (KOO * Y), Mr = Y.transpose() * (MOO * Y);
+    Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(0.5 * (Kr + Kr.transpose()),
+                                                         0.5 * (Mr + Mr.transpose()));
+    X = Y * eig.eigenvectors();
+    w2 = eig.eigenvalues().head(modes);
+    if (((w2 - previous).cwiseAbs().array() <= 1e-12 * w2.cwiseAbs().array()).all()) {
+      Phi = X.leftCols(modes);
+      break;
+    }
+    if (it > 500) throw NumericalError("reduced basis: subspace iteration did not converge");
+    previous = w2;
+  }
+  cutoff_ = std::sqrt(w2.maxCoeff());
+
+  // V = [Phi, Psi], made M_OO-orthonormal (dependent columns dropped).
+  Matrix V(n, modes + nc);
+  V.leftCols(modes) = Phi;
+  V.rightCols(nc) = -KOO_inv.solve(Matrix(KOC));
+  const Matrix G = V.transpose() * (MOO * V);
+  Eigen::SelfAdjointEigenSolver<Matrix> gram(0.5 * (G + G.transpose()));
+  const double top = gram.eigenvalues().maxCoeff();
+  Index kept = 0;
+  for (Index k = 0; k < gram.eigenvalues().size(); ++k) kept += gram.eigenvalues()(k) > 1e-12 * top;
+  V_ = V * gram.eigenvectors().rightCols(kept) *
+       gram.eigenvalues().tail(kept).cwiseSqrt().cwiseInverse().asDiagonal();
+
+  // Reduced contact problem: coordinates (q, u_C).
+  const Index r = V_.cols();
+  Matrix T = Matrix::Zero(N, r + nc);
+  T(interior_, Eigen::seqN(0, r)) = V_;
+  for (Index k = 0; k < nc; ++k) T(contact_[k], r + k) = 1;
+  const Matrix Mr = T.transpose() * (problem.M() * T), Kr = T.transpose() * (problem.K() * T);
+  std::vector<Index> contact(nc);
+  for (Index k = 0; k < nc; ++k) contact[k] = r + k;
+  field_ = std::make_unique<ReducedField>(0.5 * (Mr + Mr.transpose()),
+                                          0.5 * (Kr + Kr.transpose()), T.transpose() * F,
+                                          contact, problem.gaps());
+}
+
+Vector ReducedBasis::reduce(const Vector& u_interior) const {
+  const SparseMatrix MOO = block(problem_.M(), interior_, interior_);
+  return V_.transpose() * (MOO * u_interior);
+}
+
+double ReducedBasis::full_residual(const Vector& q, const Vector& a) const {
+  // Full internal state x = (V q, u_C) and its acceleration, u_C from the
+  // reduced model's nodal boundary relation (the full model's on range(V)).
+  const ReducedField& f = *field_;
+  const Region& reg = f.region(f.active_set(q));
+  const Index N = problem_.size();
+  Vector x(N), xa(N);
+  x(interior_) = V_ * q;
+  xa(interior_) = V_ * a;
+  x(contact_) = reg.A * q + reg.e;
+  xa(contact_) = reg.A * a;
+  const Vector r = problem_.M() * xa + problem_.K() * x - F_;
+  // P^T r of the full model: r_O + A_full^T r_C, with A_full from the full
+  // nodal boundary relation (open contacts: u_I = K_II^-1 (F_I - K_IO u_O ...)).
+  Vector R = r(interior_);
+  std::vector<Index> open, open_dofs;
+  for (Index k = 0; k < f.n_contact(); ++k)
+    if (!reg.active[k]) open.push_back(k), open_dofs.push_back(contact_[k]);
+  if (!open.empty()) {
+    const Matrix KII = Matrix(block(problem_.K(), open_dofs, open_dofs));
+    const Vector y = KII.llt().solve(r(open_dofs));
+    R -= block(problem_.K(), interior_, open_dofs) * y;
+  }
+  const Vector terms = (problem_.M().cwiseAbs() * xa.cwiseAbs() +
+                        problem_.K().cwiseAbs() * x.cwiseAbs() + F_.cwiseAbs());
+  return R.norm() / std::max(terms(interior_).norm(), 1e-300);
+}
+
+}  // namespace nbm

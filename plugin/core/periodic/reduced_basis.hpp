@@ -1,0 +1,50 @@
+// A reduced basis for the interior unknowns of large models (method.md §6):
+// u_O ~ V q with V = [Phi, Psi], Phi the lowest modes of the interior with
+// the contact dofs clamped (K_OO Phi = M_OO Phi w^2) and Psi = -K_OO^-1 K_OC
+// the static responses to unit contact displacements (Craig-Bampton's
+// shapes). The contact dofs stay unknowns of their own, so the reduced model
+// is again a contact problem (reduced_field.hpp): its nodal boundary
+// relation is the full model's restricted to range(V), a massless boundary
+// stays massless, and every static state of the full model is represented
+// exactly (range(Psi) holds the interior response to any contact state).
+#pragma once
+
+#include "contact_problem.hpp"
+#include "reduced_field.hpp"
+
+namespace nbm {
+
+class ReducedBasis {
+ public:
+  /// `modes` fixed-interface modes (>= 1) of `problem` under the load F
+  /// (internal coordinates). Throws InputError if modes is out of range,
+  /// NumericalError if K_OO is singular or the eigensolver does not converge.
+  ReducedBasis(const ContactProblem& problem, const Vector& F, int modes);
+
+  /// The reduced contact problem: interior unknowns q, contact dofs last.
+  const ReducedField& field() const { return *field_; }
+  Index size() const { return V_.cols(); }
+  /// Largest retained fixed-interface circular frequency.
+  double cutoff_frequency() const { return cutoff_; }
+
+  /// q of an interior vector u_O (M_OO-orthogonal projection onto range(V)).
+  Vector reduce(const Vector& u_interior) const;
+  /// u_O = V q.
+  Vector expand(const Vector& q) const { return V_ * q; }
+
+  /// Residual of the full model's reduced equations P^T (M x'' + K x - F)
+  /// (method.md §4) at the reduced state (q, q''), relative to the size of
+  /// its terms: zero for an exact solution of the full model, so the
+  /// reduction error of a state on an orbit of the reduced model.
+  double full_residual(const Vector& q, const Vector& a) const;
+
+ private:
+  const ContactProblem& problem_;
+  Vector F_;
+  std::vector<Index> interior_, contact_;
+  Matrix V_;               // n_O x (m + n_c), M_OO-orthonormal columns
+  double cutoff_ = 0;
+  std::unique_ptr<ReducedField> field_;
+};
+
+}  // namespace nbm
