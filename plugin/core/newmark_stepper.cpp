@@ -54,37 +54,58 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
 
   // Fixed point on the active set at t_{n+1} (§5): solve with a guess, then
   // take the LCP's set at the new interior displacement until they agree.
+  // Every solve is kept as a candidate for the fallback, with how far its set
+  // is from being consistent (NodalBoundary::violation).
+  struct Candidate {
+    ActiveSet set;
+    Vector u_next, u_hat;
+    double violation;
+  };
   StepReport report;
-  std::vector<ActiveSet> tried;
+  std::vector<Candidate> tried;
   ActiveSet guess = active_;
   Vector u_next, u_hat;
   bool consistent = false;
   while (true) {
     ++report.active_set_iterations;
     u_hat = solve_displacement(guess, u_pred, F_next, u_next);
-    if (boundary_.consistent(u_next, F_next, guess)) {
+    const double violation = boundary_.violation(u_next, F_next, guess);
+    if (violation <= kConsistencyTolerance) {
       consistent = true;
       break;
     }
-    tried.push_back(guess);
+    tried.push_back({guess, u_next, u_hat, violation});
     Vector u_lcp = u_next;
     guess = boundary_.enforce(u_lcp, F_next, guess).active;
-    if (std::find(tried.begin(), tried.end(), guess) != tried.end() ||
-        report.active_set_iterations >= parameters_.max_active_set_iterations)
+    const bool seen = std::any_of(tried.begin(), tried.end(),
+                                  [&](const Candidate& c) { return c.set == guess; });
+    if (seen || report.active_set_iterations >= parameters_.max_active_set_iterations)
       break;  // cycling
   }
 
   ActiveSet final_set = guess;
   if (!consistent) {
-    // Fallback (§5): the dynamics use the active set of the LCP at the
-    // predictor; u_C^{n+1} comes from the LCP at u_O^{n+1}, so
-    // impenetrability stays exact.
+    // Fallback (§5): no set is consistent at t_{n+1}. The dynamics use the
+    // least inconsistent of the sets tried and of the LCP's set at the
+    // predictor; u_C^{n+1} then comes from the LCP at u_O^{n+1}, so
+    // impenetrability stays exact. (A contact grazed by 1e-14 thus keeps the
+    // free motion instead of being held for a step.)
     report.fallback = true;
     Vector u_lcp = u_pred;
     const ActiveSet predictor_set = boundary_.enforce(u_lcp, F_next, active_).active;
-    ++report.active_set_iterations;
-    u_hat = solve_displacement(predictor_set, u_pred, F_next, u_next);
-    final_set = boundary_.enforce(u_next, F_next, predictor_set).active;
+    if (std::none_of(tried.begin(), tried.end(),
+                     [&](const Candidate& c) { return c.set == predictor_set; })) {
+      ++report.active_set_iterations;
+      u_hat = solve_displacement(predictor_set, u_pred, F_next, u_next);
+      tried.push_back(
+          {predictor_set, u_next, u_hat, boundary_.violation(u_next, F_next, predictor_set)});
+    }
+    const Candidate& best = *std::min_element(
+        tried.begin(), tried.end(),
+        [](const Candidate& a, const Candidate& b) { return a.violation < b.violation; });
+    u_next = best.u_next;
+    u_hat = best.u_hat;
+    final_set = boundary_.enforce(u_next, F_next, best.set).active;
   }
 
   a_ = (u_next - u_hat) / (beta * dt * dt);

@@ -6,14 +6,6 @@
 #include "errors.hpp"
 
 namespace nbm {
-namespace {
-
-// Sign checks of the active set accept round-off of this relative size;
-// impenetrability is then exact to 1e-12 of the displacement scale.
-constexpr double kConsistencyTolerance = 1e-13;
-
-}  // namespace
-
 NodalBoundary::NodalBoundary(const ContactProblem& problem)
     : problem_(problem),
       K_C_(problem.constraint_basis().leftCols(problem.n_contact()).transpose()) {
@@ -83,6 +75,10 @@ Vector NodalBoundary::gaps(const Vector& u) const {
 }
 
 bool NodalBoundary::consistent(const Vector& u, const Vector& F, const ActiveSet& active) const {
+  return violation(u, F, active) <= kConsistencyTolerance;
+}
+
+double NodalBoundary::violation(const Vector& u, const Vector& F, const ActiveSet& active) const {
   const auto& c = problem_.contact_index();
   const Vector gap = gaps(u);
   const Vector lambda = reactions(u, F);
@@ -92,11 +88,12 @@ bool NodalBoundary::consistent(const Vector& u, const Vector& F, const ActiveSet
   for (std::size_t k = 0; k < c.size(); ++k) f_scale = std::max(f_scale, std::abs(F(c[k])));
   const Vector Kabs_u = K_C_.cwiseAbs() * u.cwiseAbs();
   f_scale = std::max(f_scale, Kabs_u.maxCoeff());
+  double v = 0;
   for (std::size_t k = 0; k < c.size(); ++k) {
-    if (active[k] && lambda(k) < -kConsistencyTolerance * f_scale) return false;
-    if (!active[k] && gap(k) < -kConsistencyTolerance * u_scale) return false;
+    if (active[k] && lambda(k) < 0) v = std::max(v, -lambda(k) / f_scale);
+    if (!active[k] && gap(k) < 0) v = std::max(v, -gap(k) / u_scale);
   }
-  return true;
+  return v;
 }
 
 }  // namespace nbm

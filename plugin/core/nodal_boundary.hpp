@@ -10,6 +10,11 @@
 
 namespace nbm {
 
+/// Sign checks of the active set accept round-off of this relative size
+/// (NodalBoundary::consistent); impenetrability is then exact to 1e-12 of
+/// the displacement scale.
+constexpr double kConsistencyTolerance = 1e-13;
+
 class NodalBoundary {
  public:
   explicit NodalBoundary(const ContactProblem& problem);
@@ -33,8 +38,14 @@ class NodalBoundary {
   Vector gaps(const Vector& u) const;
 
   /// True if the active set is the LCP's at u: gap >= -tol on open contacts
-  /// and lambda >= -tol on closed ones, with tolerances at round-off scale.
+  /// and lambda >= -tol on closed ones, with tolerances at round-off scale
+  /// (violation() <= 1e-13).
   bool consistent(const Vector& u, const Vector& F, const ActiveSet& active) const;
+  /// How far the active set is from the LCP's at u: the largest penetration
+  /// of an open contact relative to the displacement scale (|u|, |g|) and the
+  /// largest tensile reaction of a closed one relative to the force scale
+  /// (|F_C|, |K_C| |u|); 0 if neither occurs.
+  double violation(const Vector& u, const Vector& F, const ActiveSet& active) const;
 
  private:
   const ContactProblem& problem_;
