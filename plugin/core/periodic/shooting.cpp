@@ -70,12 +70,16 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     period = half ? 2 * y(n) : y(2 * n);
   };
 
-  // Residual R (and Jacobian J) at y; `merit` is the scaled size of R that
-  // convergence is judged on.
+  // Residual R (and Jacobian J) at y, rows scaled like the periodicity
+  // residual (displacements by |u0|, velocities by |u0| 2 pi / T, the
+  // amplitude condition by its target), so that the least-squares steps
+  // minimise what convergence is judged on: `merit`, the largest scaled
+  // entry; `size`, the 2-norm the line search decreases.
   struct Evaluation {
     Vector R;
     Matrix J;
     double merit = std::numeric_limits<double>::infinity();
+    double size = std::numeric_limits<double>::infinity();
   };
   auto evaluate = [&](const Vector& y, bool jacobian) {
     Evaluation e;
@@ -86,16 +90,23 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     const FlowResult r = flow.integrate(u, v, half ? 0.5 * period : period, jacobian);
     const double amp = amplitude_value(field, o, u, v, period) - target;
     const double us = std::max(u.norm(), 1e-300), vs = us * 2 * M_PI / period;
+    Vector weight;
     if (half) {
       e.R.resize(n + 1);
       e.R << r.v, amp;
+      weight = Vector::Constant(n + 1, 1 / vs);
       e.merit = std::max(r.v.norm() / vs, std::abs(amp) / amp_scale);
     } else {
       e.R.resize(2 * n + 2);
       e.R << r.u - u, r.v - v, v(o.probe), amp;
+      weight = Vector::Constant(2 * n + 2, 1 / vs);
+      weight.head(n).setConstant(1 / us);
       e.merit = std::max({periodicity(u, v, r, period), std::abs(v(o.probe)) / vs,
                           std::abs(amp) / amp_scale});
     }
+    weight(weight.size() - 1) = 1 / amp_scale;
+    e.R = weight.cwiseProduct(e.R);
+    e.size = e.R.norm();
     if (!jacobian) return e;
     // Gradient of the amplitude condition in (u0, v0, T).
     Vector grad = Vector::Zero(2 * n + 1);
@@ -117,6 +128,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
       e.J(2 * n, n + o.probe) = 1;
       e.J.row(2 * n + 1) = grad.transpose();
     }
+    e.J = weight.asDiagonal() * e.J;
     return e;
   };
 
@@ -136,8 +148,8 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     // Trust region on the period: at most 20% change per step.
     const Index iT = y.size() - 1;
     double damping = std::min(1.0, 0.2 * std::abs(y(iT)) / std::max(std::abs(step(iT)), 1e-300));
-    Evaluation trial = evaluate(y + step, false);
-    while (!(trial.merit < e.merit) && damping > 1.0 / 1024) {
+    Evaluation trial = evaluate(y + damping * step, false);
+    while (!(trial.size < e.size) && damping > 1.0 / 1024) {
       damping /= 2;
       trial = evaluate(y + damping * step, false);
     }
