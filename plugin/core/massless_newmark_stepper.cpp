@@ -42,25 +42,32 @@ StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
   const auto& c = problem_.contact_index();
   const Index nc = problem_.n_contact();
 
-  // Free step, then the LCP in lambda (header): z = lambda, w = gap.
-  Vector u = problem_.M() * u_hat + bdt2 * F_next;
-  S_->solve_in_place(u);
+  // In acceleration form, u = u_hat + bdt2 a (no cancellation at small dt):
+  // S a = F - K u_hat - E_C lambda. Free step, then the LCP in lambda
+  // (header): z = lambda, w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda).
+  Vector a = F_next - problem_.K() * u_hat;
+  S_->solve_in_place(a);
   Vector q(nc);
-  for (Index k = 0; k < nc; ++k) q(k) = problem_.gaps()(k) - u(c[k]);
+  for (Index k = 0; k < nc; ++k) q(k) = (problem_.gaps()(k) - u_hat(c[k])) - bdt2 * a(c[k]);
   ActiveSet open(nc);
   for (Index k = 0; k < nc; ++k) open[k] = !active_[k];  // z = lambda = 0 where open
   const LcpResult lcp = LcpSolver::solve(lcp_matrix_, q, open);
   if (lcp.z.cwiseAbs().maxCoeff() > 0) {
-    Vector correction = Vector::Zero(u.size());
-    for (Index k = 0; k < nc; ++k) correction(c[k]) = -bdt2 * lcp.z(k);
+    Vector correction = Vector::Zero(a.size());
+    for (Index k = 0; k < nc; ++k) correction(c[k]) = -lcp.z(k);
     S_->solve_in_place(correction);
-    u += correction;
+    a += correction;
   }
 
-  a_ = (u - u_hat) / bdt2;
+  a_ = a;
   v_ = v_pred + (gamma_ * dt) * a_;
-  u_ = u;
+  u_ = u_hat + bdt2 * a;
+  // The LCP's z is lambda: z_k = 0 (lcp.active) where contact k is open.
   for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
+  // Closed contacts sit exactly on the obstacle, not only to the round-off of
+  // the solves (which grows with beta dt^2 |K|).
+  for (Index k = 0; k < nc; ++k)
+    if (active_[k]) u_(c[k]) = problem_.gaps()(k);
   finish_step(F_next);
   StepReport report;
   report.active_set_iterations = 1;

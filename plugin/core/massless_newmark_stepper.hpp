@@ -9,7 +9,8 @@
 //     gap . lambda = 0,   W_CC = E_C^T S^-1 E_C (symmetric positive definite),
 // solved exactly: the step has a unique solution, found without iterating
 // over guessed active sets, and u_C satisfies the nodal boundary relation at
-// u_O^{n+1}, so impenetrability is exact.
+// u_O^{n+1}, so impenetrability is exact. The step is solved in
+// acceleration form (u = u_hat + beta dt^2 a), exact at any dt.
 #pragma once
 
 #include <memory>

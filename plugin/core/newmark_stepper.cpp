@@ -35,15 +35,22 @@ void NewmarkStepper::solve_acceleration(const Vector& F) {
   mass.solve(active_, r, Vector::Zero(problem_.n_contact()), a_);
 }
 
-Vector NewmarkStepper::solve_displacement(const ActiveSet& active, const Vector& u_pred,
-                                          const Vector& F, Vector& u_next) const {
+void NewmarkStepper::solve_step(const ActiveSet& active, const Vector& u_pred, const Vector& F,
+                                Vector& u_next, Vector& a_next) const {
   const double bdt2 = parameters_.beta * dt_ * dt_;
   const Vector h = boundary_.displacement_constraint(active, F);
   Vector u_hat = u_pred;
   boundary_.project(u_hat, active, h);
-  const Vector r = problem_.M() * u_hat + bdt2 * F;
-  solver_.solve(active, r, h, u_next);
-  return u_hat;
+  // S u = M u_hat + bdt2 F + G^T mu with u = u_hat + bdt2 a is
+  // S a = F - K u_hat + G^T mu' and, since G u_hat = h, G a = 0.
+  const Vector r = F - problem_.K() * u_hat;
+  solver_.solve(active, r, Vector::Zero(problem_.n_contact()), a_next);
+  // Closed contacts: a_C = 0 and u_C = g hold exactly, not only to the
+  // round-off of the solve (which grows with beta dt^2 |K|).
+  const auto& c = problem_.contact_index();
+  for (std::size_t k = 0; k < c.size(); ++k)
+    if (active[k]) a_next(c[k]) = 0.0;
+  u_next = u_hat + bdt2 * a_next;
 }
 
 StepReport NewmarkStepper::step(const Vector& F_next) {
@@ -58,23 +65,23 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
   // is from being consistent (NodalBoundary::violation).
   struct Candidate {
     ActiveSet set;
-    Vector u_next, u_hat;
+    Vector u_next, a_next;
     double violation;
   };
   StepReport report;
   std::vector<Candidate> tried;
   ActiveSet guess = active_;
-  Vector u_next, u_hat;
+  Vector u_next, a_next;
   bool consistent = false;
   while (true) {
     ++report.active_set_iterations;
-    u_hat = solve_displacement(guess, u_pred, F_next, u_next);
+    solve_step(guess, u_pred, F_next, u_next, a_next);
     const double violation = boundary_.violation(u_next, F_next, guess);
     if (violation <= kConsistencyTolerance) {
       consistent = true;
       break;
     }
-    tried.push_back({guess, u_next, u_hat, violation});
+    tried.push_back({guess, u_next, a_next, violation});
     Vector u_lcp = u_next;
     guess = boundary_.enforce(u_lcp, F_next, guess).active;
     const bool seen = std::any_of(tried.begin(), tried.end(),
@@ -96,19 +103,19 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
     if (std::none_of(tried.begin(), tried.end(),
                      [&](const Candidate& c) { return c.set == predictor_set; })) {
       ++report.active_set_iterations;
-      u_hat = solve_displacement(predictor_set, u_pred, F_next, u_next);
+      solve_step(predictor_set, u_pred, F_next, u_next, a_next);
       tried.push_back(
-          {predictor_set, u_next, u_hat, boundary_.violation(u_next, F_next, predictor_set)});
+          {predictor_set, u_next, a_next, boundary_.violation(u_next, F_next, predictor_set)});
     }
     const Candidate& best = *std::min_element(
         tried.begin(), tried.end(),
         [](const Candidate& a, const Candidate& b) { return a.violation < b.violation; });
     u_next = best.u_next;
-    u_hat = best.u_hat;
+    a_next = best.a_next;
     final_set = boundary_.enforce(u_next, F_next, best.set).active;
   }
 
-  a_ = (u_next - u_hat) / (beta * dt * dt);
+  a_ = a_next;
   v_ = v_pred + (gamma * dt) * a_;
   u_ = u_next;
   active_ = final_set;

@@ -33,11 +33,14 @@ class NewmarkStepper final : public Stepper {
   void solve_acceleration(const Vector& F) override;
 
  private:
-  /// u_{n+1} for a given active set from the predictor u_pred: solves
-  /// S u = M u_hat + beta dt^2 F, G u = h, where u_hat is u_pred with its
-  /// contact part from the nodal boundary relation of that set. Returns u_hat.
-  Vector solve_displacement(const ActiveSet& active, const Vector& u_pred, const Vector& F,
-                            Vector& u_next) const;
+  /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
+  /// S u = M u_hat + beta dt^2 F + G^T mu, G u = h, where u_hat is u_pred
+  /// with its contact part from the nodal boundary relation of that set,
+  /// solved in acceleration form (S a = F - K u_hat + G^T mu', G a = 0,
+  /// u = u_hat + beta dt^2 a): a is never formed as (u - u_hat)/(beta dt^2),
+  /// which loses every digit when beta dt^2 |a| is below the round-off of u.
+  void solve_step(const ActiveSet& active, const Vector& u_pred, const Vector& F,
+                  Vector& u_next, Vector& a_next) const;
 
   NewmarkParameters parameters_;
   ConstrainedSolver solver_;
