@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Runs the core benchmarks and writes bench/RESULTS.md (ratios NBM / plain
 # measured side by side, fitted scaling exponents, peak memory) and
-# bench/scaling.png (log-log step time against dofs).
+# bench/scaling.png (log-log step time against dofs). The script-level
+# benchmark (whole FreeFem++ runs, NBM against Nitsche) is bench/script-timing.sh,
+# which writes bench/RESULTS-scripts.md; the report points to it.
 #
 #   bash bench/run.sh                 P1 and P2, 1e3, 1e4 and 1e5 dofs (about 10 minutes)
 #   bash bench/run.sh "1000 10000"    other sizes (1000000 takes hours: NBM setup)
@@ -52,14 +54,17 @@ report="$repo/bench/RESULTS.md"
   echo
   echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
   echo "($(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo),"
-  echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')). Plane-strain plate"
-  echo "Load average when the run started: $load (on 2 cores, anything above about 0.5 means the ratios"
+  echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))."
+  echo "Load average when the run started: $load (on $(nproc) cores, anything above about 0.5 means the ratios"
   echo "below are perturbed by other work; rerun on a quiet machine)."
-  echo "(bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
+  echo "Plane-strain plate (bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
   echo "implicit dt = 2e-4, bouncing runs restart every 250 steps (fall, impact, rebound); explicit"
   echo "dt = half the critical step. Times are wall-clock per step (per factorization or setup for"
   echo "those rows); every benchmark ran in its own process; memory is what its solver objects hold"
   echo "(heap growth after the plate was assembled, glibc mallinfo2). Raw data: out/bench/raw.csv."
+  echo
+  echo "Whole FreeFem++ runs (wall time per simulated second of the bouncing plate, NBM against"
+  echo "Nitsche, three mesh sizes): [RESULTS-scripts.md](RESULTS-scripts.md), by \`bash bench/script-timing.sh\`."
   echo
   echo "## Ratios NBM / plain (same matrices, same factorization library, same run)"
   echo
