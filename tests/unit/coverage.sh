@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Line coverage of the nbm core (plugin/core/*.cpp) by the unit tests, with
-# plain gcov (gcovr is not needed).
+# Line coverage of the nbm core (plugin/core/*.cpp and plugin/core/periodic/*.cpp)
+# by the unit tests (nbm_unit_tests, nbm_periodic_tests), with plain gcov
+# (gcovr is not needed).
 #
 #   tests/unit/coverage.sh [build-dir]     default build dir: <repo>/build-coverage
 #
 # Configures the build dir with -DNBM_COVERAGE=ON -DCMAKE_BUILD_TYPE=Debug,
-# builds and runs nbm_unit_tests from zeroed counters, then prints per-file
+# builds and runs the unit tests from zeroed counters, then prints per-file
 # and total line coverage. Set NBM_COVERAGE_MISSED=1 to also list the lines
 # that were never executed. Exits non-zero if a unit test failed.
 set -euo pipefail
@@ -15,19 +16,21 @@ build=${1:-$src/build-coverage}
 objdir="$build/plugin/CMakeFiles/nbm_core.dir/core"
 
 cmake -S "$src" -B "$build" -DNBM_COVERAGE=ON -DCMAKE_BUILD_TYPE=Debug >/dev/null
-cmake --build "$build" -j"$(nproc)" --target nbm_unit_tests >/dev/null
+cmake --build "$build" -j"$(nproc)" --target nbm_unit_tests nbm_periodic_tests >/dev/null
 
 find "$build" -name '*.gcda' -delete
 status=0
-"$build/tests/unit/nbm_unit_tests" --gtest_brief=1 >"$build/unit-tests.log" 2>&1 || status=$?
-tail -n 3 "$build/unit-tests.log"
+for t in unit/nbm_unit_tests periodic/nbm_periodic_tests; do
+  "$build/tests/$t" --gtest_brief=1 >"$build/$(basename $t).log" 2>&1 || status=$?
+  tail -n 2 "$build/$(basename $t).log"
+done
 
 # gcov -t prints the annotated sources (the .cpp and every header it pulled
 # in) to stdout: "count:line:text", with ##### or ===== for lines never run
-# and - for lines without code. Only the blocks of plugin/core/*.cpp count.
-cd "$objdir"
-for f in "$src"/plugin/core/*.cpp; do
-  gcov -t "$(basename "$f").o" 2>/dev/null
+# and - for lines without code. Only the blocks of the core's .cpp files count.
+for f in "$src"/plugin/core/*.cpp "$src"/plugin/core/periodic/*.cpp; do
+  rel=${f#"$src"/plugin/core/}
+  (cd "$objdir/$(dirname "$rel")" && gcov -t "$(basename "$f").o" 2>/dev/null)
 done | awk -v core="$src/plugin/core/" -v show_missed="${NBM_COVERAGE_MISSED:-0}" '
   /^ *-: *0:Source:/ {
     sub(/^ *-: *0:Source:/, "")
