@@ -99,3 +99,10 @@ foreach(variant
     WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
   set_tests_properties(script.restart-${name} PROPERTIES TIMEOUT 300 LABELS script)
 endforeach()
+
+# Long run, shortened (tests/long-run.sh; --full for 10^6 bar steps): no NaN,
+# impenetrability, energy bounded where claimed, resident memory growing by
+# less than 1% between the first and the last tenth of each run.
+add_test(NAME script.long-run
+  COMMAND bash ${PROJECT_SOURCE_DIR}/tests/long-run.sh --build ${CMAKE_BINARY_DIR})
+set_tests_properties(script.long-run PROPERTIES TIMEOUT 900 LABELS "script;long-run")
