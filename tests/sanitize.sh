@@ -45,10 +45,11 @@ start=$SECONDS
 # Script tests run with the sanitized plugin (about 1 min on 2 cores): the
 # .idp contact helpers, plates P1/P2 (free flight, energy: both mass
 # treatments), bars (chattering: both mass treatments; explicit scheme;
-# massless boundary; the clamped bar's Dirichlet dofs).
+# massless boundary; the clamped bar's Dirichlet dofs), exact restarts
+# (nbmRestart; the disc's rotated contact nodes).
 SCRIPT_TESTS='contact-helpers|plate-free-flight-P1|plate-free-flight-P2|plate-energy|chattering'
 SCRIPT_TESTS+='|bouncing-bar-convergence-explicit|bouncing-bar-convergence-redistributed'
-SCRIPT_TESTS+='|clamped-bar-convergence-P1-scaled'
+SCRIPT_TESTS+='|clamped-bar-convergence-P1-scaled|restart-newmark|restart-disc-P2'
 
 finish() {  # finish <passed> <failed>
   echo "sanitize: total time $((SECONDS - start)) s"
