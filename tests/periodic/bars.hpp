@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "contact_problem.hpp"
@@ -35,17 +36,23 @@ struct GapBar {
     K.setFromTriplets(k.begin(), k.end());
   }
 
-  nbm::ReducedField field() const {
+  /// The contact problem (tip dof N against the obstacle, dof 0 fixed),
+  /// with the redistributed mass if `massless`.
+  std::unique_ptr<nbm::ContactProblem> problem() const {
     nbm::SparseMatrix M, K;
     assemble(M, K);
     nbm::ContactSet contact(N + 1, {N}, {1.0}, nbm::Vector::Constant(1, g), {0});
-    nbm::ContactProblem p(M, K, contact, {0});
+    auto p = std::make_unique<nbm::ContactProblem>(M, K, contact, std::vector<Eigen::Index>{0});
     if (massless) {
       nbm::Matrix x(N + 1, 1);
       for (int i = 0; i <= N; ++i) x(i, 0) = i * h();
-      p.make_boundary_massless(nbm::redistributed_mass(p, M, x));
+      p->make_boundary_massless(nbm::redistributed_mass(*p, M, x));
     }
-    return nbm::ReducedField::from(p, nbm::Vector::Zero(p.size()));
+    return p;
+  }
+
+  nbm::ReducedField field() const {
+    return nbm::ReducedField::from(*problem(), nbm::Vector::Zero(N));
   }
   /// Interior unknowns are the nodes 1..N-1, in order.
   double x_of_interior(int k) const { return (k + 1) * h(); }

@@ -13,19 +13,14 @@ namespace {
 
 using nbm::Vector;
 
+// The massless fixed-gap bar with N elements and its contact problem.
 struct BarModel {
   nbm_test::GapBar bar;
-  nbm::SparseMatrix M, K;
   std::unique_ptr<nbm::ContactProblem> problem;
   explicit BarModel(int N) {
     bar.N = N;
     bar.massless = true;
-    bar.assemble(M, K);
-    nbm::ContactSet contact(N + 1, {N}, {1.0}, Vector::Constant(1, bar.g), {0});
-    problem = std::make_unique<nbm::ContactProblem>(M, K, contact, std::vector<Eigen::Index>{0});
-    nbm::Matrix x(N + 1, 1);
-    for (int i = 0; i <= N; ++i) x(i, 0) = i * bar.h();
-    problem->make_boundary_massless(nbm::redistributed_mass(*problem, M, x));
+    problem = bar.problem();
   }
 };
 

@@ -11,16 +11,15 @@ namespace {
 
 using nbm::Vector;
 
+// The fixed-gap bar (paper NBM, N = 20) and a guess on user dofs: the
+// continuum orbit's rest profile with contact fraction 0.3.
 struct UserBar {
   nbm_test::GapBar bar;
-  nbm::SparseMatrix M, K;
   std::unique_ptr<nbm::ContactProblem> problem;
   std::vector<double> F, u, v;
   UserBar() {
     bar.N = 20;
-    bar.assemble(M, K);
-    nbm::ContactSet contact(bar.N + 1, {bar.N}, {1.0}, Vector::Constant(1, bar.g), {0});
-    problem = std::make_unique<nbm::ContactProblem>(M, K, contact, std::vector<Eigen::Index>{0});
+    problem = bar.problem();
     F.assign(bar.N + 1, 0.0);
     v.assign(bar.N + 1, 0.0);
     for (int i = 0; i <= bar.N; ++i)
@@ -28,12 +27,17 @@ struct UserBar {
   }
 };
 
-TEST(UserOrbit, ShootingReportsTheOrbitOnUserDofs) {
-  UserBar b;
+// Half-period shooting from the bar's guess, probe next to the tip.
+nbm::OrbitReport shoot_bar(const UserBar& b) {
   nbm::OrbitOptions o;
   o.half_period = true;
   o.probe = b.bar.N - 1;
-  const auto r = nbm::periodic_orbit(*b.problem, b.F, b.u, b.v, 3.7, o);
+  return nbm::periodic_orbit(*b.problem, b.F, b.u, b.v, 3.7, o);
+}
+
+TEST(UserOrbit, ShootingReportsTheOrbitOnUserDofs) {
+  UserBar b;
+  const auto r = shoot_bar(b);
   EXPECT_LE(r.periodicity_residual, 1e-10);
   EXPECT_LE(r.complementarity_residual, 1e-12);
   EXPECT_EQ(r.switches, 2);
@@ -57,11 +61,9 @@ TEST(UserOrbit, ShootingReportsTheOrbitOnUserDofs) {
 
 TEST(UserOrbit, HarmonicBalanceAndReducedBasisAgreeWithShooting) {
   UserBar b;
-  nbm::OrbitOptions o;
-  o.half_period = true;
-  o.probe = b.bar.N - 1;
-  const auto shot = nbm::periodic_orbit(*b.problem, b.F, b.u, b.v, 3.7, o);
-  nbm::OrbitOptions h = o;
+  const auto shot = shoot_bar(b);
+  nbm::OrbitOptions h;
+  h.probe = b.bar.N - 1;
   h.method = "harmonic-balance";
   h.cosine_only = true;
   h.harmonics = 40;
