@@ -22,6 +22,13 @@ Vector energy_gradient(const ReducedField& field, const Vector& u, const Vector&
 
 double amplitude_value(const ReducedField& field, const ShootingOptions& o, const Vector& u,
                        const Vector& v, double period) {
+  if (o.arclength) {
+    const Vector& t = o.arclength->tangent;
+    const Vector& y = o.arclength->anchor;
+    const Index n = u.size();
+    return t.head(n).dot(u - y.head(n)) + t.segment(n, n).dot(v - y.segment(n, n)) +
+           t(2 * n) * (period - y(2 * n));
+  }
   switch (o.kind) {
     case ShootingOptions::Amplitude::displacement: return u(o.probe);
     case ShootingOptions::Amplitude::energy: return field.energies(u, v)(3);
@@ -50,12 +57,23 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
                      std::to_string(n) + ")");
   if (!(o.tolerance > 0)) throw InputError("shooting: tolerance must be > 0");
+  if (o.arclength) {
+    const auto& a = *o.arclength;
+    if (a.tangent.size() != 2 * n + 1 || a.anchor.size() != 2 * n + 1 || !a.tangent.allFinite() ||
+        !a.anchor.allFinite() || a.tangent.norm() == 0)
+      throw InputError("shooting: the arclength condition needs a non-zero finite tangent and a "
+                       "finite anchor of " + std::to_string(2 * n + 1) + " entries");
+  }
 
   const ExactFlow flow(field);
-  const double target = std::isnan(o.amplitude)
+  // The arclength condition is judged relative to |tangent| |anchor|.
+  const double target = o.arclength ? 0
+                        : std::isnan(o.amplitude)
                             ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0, T)
                             : o.amplitude;
-  const double amp_scale = std::max(std::abs(target), 1e-300);
+  const double amp_scale =
+      o.arclength ? o.arclength->tangent.norm() * std::max(o.arclength->anchor.norm(), 1e-300)
+                  : std::max(std::abs(target), 1e-300);
   const bool half = o.half_period;
 
   // Unknowns y = (u0, v0, T) or, for half-period shooting, (u0, T/2).
@@ -113,6 +131,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     if (o.kind == ShootingOptions::Amplitude::displacement) grad(o.probe) = 1;
     if (o.kind == ShootingOptions::Amplitude::energy) grad.head(2 * n) = energy_gradient(field, u, v);
     if (o.kind == ShootingOptions::Amplitude::period) grad(2 * n) = 1;
+    if (o.arclength) grad = o.arclength->tangent;
     if (half) {
       // d v(T/2) / d(u0, T/2) = (monodromy_vu, a(T/2)).
       e.J = Matrix::Zero(n + 1, n + 1);

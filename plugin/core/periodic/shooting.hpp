@@ -14,6 +14,8 @@
 // an orbit at rest at 0 and T/2 retraces itself: it is periodic.
 #pragma once
 
+#include <optional>
+
 #include "periodic_orbit.hpp"
 
 namespace nbm {
@@ -26,6 +28,13 @@ struct ShootingOptions {
   /// of the initial guess.
   Amplitude kind = Amplitude::displacement;
   double amplitude = std::numeric_limits<double>::quiet_NaN();
+  /// Pseudo-arclength continuation: if set, replaces the amplitude
+  /// condition by tangent . ((u0, v0, T) - anchor) = 0 (2n + 1 entries each;
+  /// the tangent carries the continuation's scaling of the unknowns).
+  struct Arclength {
+    Vector tangent, anchor;
+  };
+  std::optional<Arclength> arclength;
   bool half_period = false;
   double tolerance = 1e-12;  ///< on the periodicity residual (periodic_orbit.hpp)
   int max_iterations = 40;
