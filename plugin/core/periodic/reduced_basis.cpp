@@ -88,6 +88,7 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   for (Index k = 0; k < gram.eigenvalues().size(); ++k) kept += gram.eigenvalues()(k) > 1e-12 * top;
   V_ = V * gram.eigenvectors().rightCols(kept) *
        gram.eigenvalues().tail(kept).cwiseSqrt().cwiseInverse().asDiagonal();
+  VtM_ = (MOO * V_).transpose();
 
   // Reduced contact problem: coordinates (q, u_C).
   const Index r = V_.cols();
@@ -103,8 +104,7 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
 }
 
 Vector ReducedBasis::reduce(const Vector& u_interior) const {
-  const SparseMatrix MOO = block(problem_.M(), interior_, interior_);
-  return V_.transpose() * (MOO * u_interior);
+  return VtM_ * u_interior;
 }
 
 double ReducedBasis::full_residual(const Vector& q, const Vector& a) const {

@@ -43,6 +43,7 @@ class ReducedBasis {
   Vector F_;
   std::vector<Index> interior_, contact_;
   Matrix V_;               // n_O x (m + n_c), M_OO-orthonormal columns
+  Matrix VtM_;             // V^T M_OO: reduce() is a projection
   double cutoff_ = 0;
   std::unique_ptr<ReducedField> field_;
 };

@@ -51,7 +51,11 @@ ReducedField::ReducedField(const Matrix& M, const Matrix& K, const Vector& F,
   for (Index i = 0; i < N; ++i)
     if (!is_contact[i]) interior_.push_back(i);
   if (interior_.empty()) throw InputError("reduced field: no interior dof");
-  if (Eigen::LLT<Matrix>(K_(contact_, contact_)).info() != Eigen::Success)
+  // Cached: active_set and complementarity_residual run once per orbit sample.
+  K_C_ = K_(contact_, Eigen::all);
+  K_CC_ = K_(contact_, contact_);
+  K_CO_ = K_(contact_, interior_);
+  if (Eigen::LLT<Matrix>(K_CC_).info() != Eigen::Success)
     throw NumericalError("reduced field: K_CC is not positive definite");
   massless_ = M_(contact_, Eigen::all).isZero(0.0);
 }
@@ -99,9 +103,8 @@ const Region& ReducedField::region(const ActiveSet& active) const {
   r->f = F_(O) - KOC * r->e;
 
   // Switching functions: gap on open contacts, reaction on closed ones.
-  const Matrix KCO = K_(contact_, O), KCC = K_(contact_, contact_);
-  const Matrix Klambda = KCO + KCC * r->A;
-  const Vector dlambda = F_(contact_) - KCC * r->e;
+  const Matrix Klambda = K_CO_ + K_CC_ * r->A;
+  const Vector dlambda = F_(contact_) - K_CC_ * r->e;
   r->H.resize(nc, n);
   r->d.resize(nc);
   for (Index k = 0; k < nc; ++k) {
@@ -164,9 +167,8 @@ ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Ve
 
 ActiveSet ReducedField::active_set(const Vector& u) const {
   // lambda = F_C - K_CO u_O - K_CC u_C with z = g - u_C: lambda = q + K_CC z.
-  const Matrix KCC = K_(contact_, contact_);
-  const Vector q = F_(contact_) - K_(contact_, interior_) * u - KCC * g_;
-  return LcpSolver::solve(KCC, q).active;
+  const Vector q = F_(contact_) - K_CO_ * u - K_CC_ * g_;
+  return LcpSolver::solve(K_CC_, q).active;
 }
 
 Vector ReducedField::acceleration(const Vector& u) const {
@@ -204,13 +206,13 @@ Eigen::Vector4d ReducedField::energies(const Vector& u, const Vector& v) const {
 double ReducedField::complementarity_residual(const Vector& u) const {
   const Vector x = expand(u);
   const Vector gap = g_ - x(contact_);
-  const Vector Kx = K_(contact_, Eigen::all) * x;
+  const Vector Kx = K_C_ * x;
   const Vector lambda = F_(contact_) - Kx;
   const double gap_scale = std::max({g_.cwiseAbs().maxCoeff(), x(contact_).cwiseAbs().maxCoeff(),
                                      1e-300});
   // The size of the terms lambda is computed from, not of lambda itself
   // (which vanishes on open contacts).
-  const Vector terms = K_(contact_, Eigen::all).cwiseAbs() * x.cwiseAbs();
+  const Vector terms = K_C_.cwiseAbs() * x.cwiseAbs();
   const double force_scale = std::max({F_(contact_).cwiseAbs().maxCoeff(),
                                        terms.maxCoeff(), 1e-300});
   double r = 0;

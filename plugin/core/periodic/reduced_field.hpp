@@ -97,6 +97,7 @@ class ReducedField {
 
  private:
   Matrix M_, K_;
+  Matrix K_C_, K_CC_, K_CO_;  // contact rows of K, and their C and O columns
   Vector F_, g_;
   std::vector<Index> interior_, contact_;
   bool massless_ = false;
