@@ -16,17 +16,20 @@ using namespace Fem2D;
 
 namespace nbm_binding {
 
-// The script-side object: the solver, null until constructed, and the last
-// periodic orbit computed on it.
+// The script-side object: the solver, null until constructed, and the two
+// last periodic orbits computed on it (continuation steps from them).
 struct NbmHandle {
   nbm::Solver* solver;
-  nbm::OrbitReport* orbit;  // the last periodic orbit (orbit_functions.cpp)
+  nbm::OrbitReport* orbit;     // the last periodic orbit (orbit_functions.cpp)
+  nbm::OrbitReport* previous;  // the one before
   void init() {
     solver = nullptr;
     orbit = nullptr;
+    previous = nullptr;
   }
   void destroy() {
-    delete orbit;  // refers to the solver's problem: goes first
+    delete orbit;  // they refer to the solver's problem: go first
+    delete previous;
     delete solver;
     init();
   }

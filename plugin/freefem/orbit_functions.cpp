@@ -8,7 +8,10 @@
 //              harmonics = 20, cosine = true,            // harmonic balance
 //              integration = "exact", adaptive = false, truncation = 1e-6,
 //              iterations = 50, modes = 0);           // modes > 0: reduced basis
-//   // u, v now hold the orbit's state at t = 0; then, on the last orbit:
+//   // u, v now hold the orbit's state at t = 0.
+//   real T = nbmContinueOrbit(S, u, v, step);  // the next orbit of the family
+//   // through the two last orbits (pseudo-arclength, shooting); then, on the
+//   // last orbit:
 //   nbmOrbitState(S, t, u, v);        // the state at time t (exact flow)
 //   nbmOrbitMultipliers(S, re, im);   // Floquet multipliers
 //   nbmOrbitResiduals(S, r);          // periodicity, complementarity, trivial
@@ -34,6 +37,17 @@ const nbm::OrbitReport& orbit_of(NbmHandle* h, const char* function) {
   if (!h->orbit)
     fail(std::string(function) + ": no periodic orbit computed yet (call nbmPeriodicOrbit first)");
   return *h->orbit;
+}
+
+// Makes `report` the last orbit of h (the last one becomes the previous
+// one) and copies its initial state to u, v; returns its period.
+double keep(NbmHandle* h, nbm::OrbitReport&& report, KN<double>* u, KN<double>* v) {
+  delete h->previous;
+  h->previous = h->orbit;
+  h->orbit = new nbm::OrbitReport(std::move(report));
+  assign(u, h->orbit->u0);
+  assign(v, h->orbit->v0);
+  return h->orbit->period;
 }
 
 class PeriodicOrbit : public E_F0mps {
@@ -75,11 +89,7 @@ class PeriodicOrbit : public E_F0mps {
     auto report = guarded(fn, [&] {
       return nbm::periodic_orbit(solver.problem(), FF, uu, vv, T0, o);
     });
-    delete h->orbit;
-    h->orbit = new nbm::OrbitReport(std::move(report));
-    assign(U, h->orbit->u0);
-    assign(V, h->orbit->v0);
-    return SetAny<double>(h->orbit->period);
+    return SetAny<double>(keep(h, std::move(report), U, V));
   }
   operator aType() const override { return atype<double>(); }
 };
@@ -104,6 +114,20 @@ class PeriodicOrbitOp : public OneOperator {
     return new PeriodicOrbit(args, e);
   }
 };
+
+double continue_orbit(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+                      const double& step) {
+  const char* fn = "nbmContinueOrbit";
+  const nbm::OrbitReport& last = orbit_of(h, fn);
+  if (!h->previous)
+    fail(std::string(fn) + ": needs the two last orbits of a family (call nbmPeriodicOrbit "
+                           "twice, for two nearby orbits)");
+  if (u == v) fail(std::string(fn) + ": u and v must be different arrays");
+  if (!(step > 0) || !std::isfinite(step))
+    fail(std::string(fn) + ": step: expected a finite step > 0");
+  auto report = guarded(fn, [&] { return nbm::continue_orbit(*h->previous, last, step); });
+  return keep(h, std::move(report), u, v);
+}
 
 long orbit_state(NbmHandle* const& h, const double& t, KN<double>* const& u,
                  KN<double>* const& v) {
@@ -172,6 +196,7 @@ void load_orbit_functions() {
   using H = NbmHandle*;
   using R = KN<double>*;
   Global.Add("nbmPeriodicOrbit", "(", new PeriodicOrbitOp);
+  Global.Add("nbmContinueOrbit", "(", new OneOperator4_<double, H, R, R, double>(continue_orbit));
   Global.Add("nbmOrbitState", "(", new OneOperator4_<long, H, double, R, R>(orbit_state));
   Global.Add("nbmOrbitMultipliers", "(", new OneOperator3_<long, H, R, R>(orbit_multipliers));
   Global.Add("nbmOrbitResiduals", "(", new OneOperator2_<long, H, R>(orbit_residuals));

@@ -8,6 +8,7 @@
 #include "errors.hpp"
 #include "harmonic_balance.hpp"
 #include "reduced_basis.hpp"
+#include "continuation.hpp"
 #include "shooting.hpp"
 
 namespace nbm {
@@ -56,9 +57,15 @@ Index interior_position(const ContactProblem& p, const ReducedField& field, long
 // reduced basis (u_O = V q).
 struct OrbitModel {
   const ContactProblem& problem;
+  Vector F;  ///< the load, internal coordinates
   std::unique_ptr<ReducedField> full;
   std::unique_ptr<ReducedBasis> basis;
+  int modes = 0;  ///< of the reduced basis; 0: none
   std::vector<Index> interior;  ///< internal indices of the interior dofs
+  /// How the orbit was computed (continuation keeps it): shooting or not,
+  /// the field unknown of the phase condition, half-period shooting.
+  bool shooting = true;
+  ShootingOptions conditions;
 
   explicit OrbitModel(const ContactProblem& p) : problem(p) {
     std::vector<char> is_contact(p.size(), 0);
@@ -91,6 +98,12 @@ struct OrbitModel {
   }
 };
 
+namespace {
+// The report of an orbit found on `model`; `method` opens its summary.
+OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
+                     OrbitReport report, const std::string& method);
+}  // namespace
+
 OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<double>& F,
                            const std::vector<double>& u, const std::vector<double>& v, double T,
                            const OrbitOptions& o) {
@@ -121,11 +134,12 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                      "conditions then use the reduced coordinate of largest amplitude)");
 
   auto model = std::make_shared<OrbitModel>(problem);
-  const Vector F_internal = problem.to_internal(FF);
+  model->F = problem.to_internal(FF);
+  model->modes = o.modes;
   if (o.modes > 0)
-    model->basis = std::make_unique<ReducedBasis>(problem, F_internal, o.modes);
+    model->basis = std::make_unique<ReducedBasis>(problem, model->F, o.modes);
   else
-    model->full = std::make_unique<ReducedField>(ReducedField::from(problem, F_internal));
+    model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
   const ReducedField& field = model->field();
   const Vector u0 = model->unknowns(uu), v0 = model->unknowns(vv);
   Index probe = 0;
@@ -137,10 +151,11 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   OrbitReport report;
   PeriodicOrbit orbit;
   std::ostringstream extra;
-  if (o.method == "shooting") {
-    ShootingOptions s;
-    s.probe = probe, s.kind = kind, s.amplitude = o.amplitude;
-    s.half_period = o.half_period, s.max_iterations = o.max_iterations;
+  ShootingOptions& s = model->conditions;
+  s.probe = probe, s.kind = kind, s.amplitude = o.amplitude;
+  s.half_period = o.half_period, s.max_iterations = o.max_iterations;
+  model->shooting = o.method == "shooting";
+  if (model->shooting) {
     orbit = shoot(field, u0, v0, T, s);
     extra << "method shooting (" << (o.half_period ? "half period" : "full period")
           << ", exact flow)\n";
@@ -171,6 +186,16 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
           << ", " << o.integration << " integration), H = " << r.harmonics << "\n"
           << "Galerkin residual " << r.residual << ", truncation estimate " << r.truncation << "\n";
   }
+  return describe(std::move(model), orbit, std::move(report), extra.str());
+}
+
+namespace {
+OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
+                     OrbitReport report, const std::string& method) {
+  const ReducedField& field = model->field();
+  const ContactProblem& problem = model->problem;
+  std::ostringstream extra;
+  extra << method;
   report.period = orbit.period;
   report.u0 = to_std(model->user(orbit.u0));
   report.v0 = to_std(model->user(orbit.u0, &orbit.v0));
@@ -186,7 +211,7 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                                            model->basis->full_residual(q, field.acceleration(q)));
     }
     report.cutoff_ratio = model->basis->cutoff_frequency() * orbit.period / (2 * M_PI);
-    extra << "reduced basis: " << o.modes << " fixed-interface modes + " << problem.n_contact()
+    extra << "reduced basis: " << model->modes << " fixed-interface modes + " << problem.n_contact()
           << " contact shapes (" << n << " unknowns), cutoff frequency " << report.cutoff_ratio
           << " x the orbit's, full-model residual along the orbit " << report.reduction_residual
           << "\n";
@@ -211,6 +236,41 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                    "\n" + summary(orbit);
   report.model = std::move(model);
   return report;
+}
+}  // namespace
+
+OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last, double step) {
+  if (!previous.model || !last.model) throw InputError("orbit: no periodic orbit");
+  const OrbitModel& m = *last.model;
+  const OrbitModel& p = *previous.model;
+  if (!m.shooting || !p.shooting)
+    throw InputError("continuation follows orbits computed by shooting, not by harmonic balance");
+  if (&p.problem != &m.problem || p.F.size() != m.F.size() || p.F != m.F ||
+      p.modes != m.modes ||
+      p.conditions.half_period != m.conditions.half_period)
+    throw InputError("the two orbits were computed on different problems, loads, reduced bases "
+                     "or with different half-period settings: they are not one family");
+  if (!(step > 0) || !std::isfinite(step))
+    throw InputError("step: expected a finite step > 0, got " + std::to_string(step));
+  const Index N = m.problem.n_dofs();
+  auto orbit_of = [&](const OrbitReport& r) {
+    PeriodicOrbit o;
+    o.u0 = m.unknowns(user_vector(r.u0, N, "u0"));
+    o.v0 = m.unknowns(user_vector(r.v0, N, "v0"));
+    o.period = r.period;
+    return o;
+  };
+  const PeriodicOrbit before = orbit_of(previous), after = orbit_of(last);
+  ContinuationOptions c;
+  c.step = step;
+  c.length = std::max(after.u0.cwiseAbs().maxCoeff(), 1e-300);
+  c.time = after.period;
+  c.velocity = c.length * 2 * M_PI / c.time;
+  const PeriodicOrbit next = continuation_step(m.field(), before, after, m.conditions, c);
+  std::ostringstream method;
+  method << "method pseudo-arclength continuation, step " << step << " (shooting, "
+         << (m.conditions.half_period ? "half period" : "full period") << ", exact flow)\n";
+  return describe(last.model, next, OrbitReport{}, method.str());
 }
 
 void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,

@@ -68,6 +68,15 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                            const std::vector<double>& u, const std::vector<double>& v, double T,
                            const OrbitOptions& options);
 
+/// The next orbit of the family through `previous` and `last`, two orbits
+/// computed by shooting (periodic_orbit or continue_orbit) on the same
+/// problem, load and reduced basis: pseudo-arclength continuation
+/// (continuation.hpp), `step` further along the family in unknowns scaled by
+/// the last orbit's amplitude, velocity scale and period. Throws InputError
+/// on orbits that do not belong together, NumericalError if the corrector
+/// does not converge (retry with a shorter step).
+OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last, double step);
+
 /// The user displacement (and velocity) along the orbit at the given times
 /// (exact flow from the orbit's initial state), one vector per time.
 void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,
