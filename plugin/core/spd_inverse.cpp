@@ -1,31 +1,165 @@
 #include "spd_inverse.hpp"
 
-#include <Eigen/CholmodSupport>
+#include <cholmod.h>
+
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "errors.hpp"
 
 namespace nbm {
 namespace {
 
-// Columns of B are pushed through X^{-1} in blocks, so that the dense
-// workspace stays at n x kBlock whatever the number of columns.
-constexpr Index kBlock = 64;
+// A CHOLMOD view (no copy) of column-major doubles.
+cholmod_dense dense_view(double* data, Index rows, Index cols) {
+  cholmod_dense d{};
+  d.nrow = d.d = static_cast<std::size_t>(rows);
+  d.ncol = static_cast<std::size_t>(cols);
+  d.nzmax = d.nrow * d.ncol;
+  d.x = data;
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
 
+// A CHOLMOD view of the lower triangle of a symmetric compressed matrix.
+cholmod_sparse lower_view(const SparseMatrix& A) {
+  cholmod_sparse s{};
+  s.nrow = static_cast<std::size_t>(A.rows());
+  s.ncol = static_cast<std::size_t>(A.cols());
+  s.nzmax = static_cast<std::size_t>(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = -1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+// Supernodal sparse Cholesky X = P' L L' P through CHOLMOD directly (not
+// Eigen's wrapper), for two things the wrapper hides: the factor L itself,
+// whose forward substitutions with sparse right-hand sides make the Gram
+// matrix cheap, and cholmod_solve2's reusable workspaces, which make a solve
+// free of heap allocations once the first one has sized them.
 class CholeskyInverse final : public SpdInverse {
  public:
   CholeskyInverse(const SparseMatrix& X, const std::string& what) : n_(X.rows()) {
-    llt_.compute(X);
-    if (llt_.info() != Eigen::Success)
+    cholmod_start(&common_);
+    common_.final_asis = 1;
+    common_.supernodal = CHOLMOD_SUPERNODAL;
+    SparseMatrix A = X;
+    A.makeCompressed();
+    cholmod_sparse view = lower_view(A);
+    L_ = cholmod_analyze(&view, &common_);
+    if (L_ == nullptr || !cholmod_factorize(&view, L_, &common_) || L_->minor != L_->n) {
+      release();
       throw NumericalError(what + " is not positive definite (Cholesky factorization failed)");
+    }
   }
+  ~CholeskyInverse() override { release(); }
+
   Index size() const override { return n_; }
-  void solve_in_place(Matrix& x) const override { x = llt_.solve(x); }
-  void solve_in_place(Vector& x) const override { x = llt_.solve(x); }
+  void solve_in_place(Matrix& x) const override { solve(x.data(), x.cols()); }
+  void solve_in_place(Vector& x) const override { solve(x.data(), 1); }
+
+  /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4): forward
+  /// substitutions only, each touching just the part of L that its sparse
+  /// column of B reaches (the elimination-tree path of its nonzeros), so the
+  /// cost grows with the number of columns times that path, not times n.
+  Matrix gram(const SparseMatrix& B) const override {
+    const SparseMatrix Y = forward_substitutions(B);
+    const Matrix W = Matrix(SparseMatrix(Y.transpose()) * Y);
+    return 0.5 * (W + W.transpose());  // symmetric to the last bit
+  }
 
  private:
+  void solve(double* x, Index cols) const {
+    cholmod_dense b = dense_view(x, n_, cols);
+    if (!cholmod_solve2(CHOLMOD_A, L_, &b, nullptr, &solution_, nullptr, &work_y_, &work_e_,
+                        &common_))
+      throw NumericalError("CHOLMOD solve failed (out of memory?)");
+    const double* s = static_cast<const double*>(solution_->x);
+    std::copy(s, s + n_ * cols, x);
+  }
+
+  // Y = L^-1 P B, sparse. Sparse right-hand sides (cholmod_solve2's Bset)
+  // need a simplicial factor: a copy of L is converted, L itself stays
+  // supernodal for the fast dense solves of the time steps.
+  SparseMatrix forward_substitutions(const SparseMatrix& B) const {
+    cholmod_factor* Ls = cholmod_copy_factor(L_, &common_);
+    if (Ls == nullptr ||
+        !cholmod_change_factor(CHOLMOD_REAL, true, false, false, false, Ls, &common_)) {
+      cholmod_free_factor(&Ls, &common_);
+      throw NumericalError("CHOLMOD: no memory for a simplicial copy of the factor");
+    }
+    // (P b)_k = b_perm[k]: entry i of b lands in row inverse[i].
+    const int* perm = static_cast<const int*>(L_->Perm);
+    std::vector<int> inverse(n_);
+    for (Index k = 0; k < n_; ++k) inverse[perm[k]] = static_cast<int>(k);
+
+    Vector b = Vector::Zero(n_);
+    std::vector<int> set_p{0, 0}, set_i(n_);
+    cholmod_sparse set{};
+    set.nrow = static_cast<std::size_t>(n_);
+    set.ncol = 1;
+    set.nzmax = static_cast<std::size_t>(n_);
+    set.p = set_p.data();
+    set.i = set_i.data();
+    set.itype = CHOLMOD_INT;
+    set.xtype = CHOLMOD_PATTERN;
+    set.dtype = CHOLMOD_DOUBLE;
+    set.packed = 1;
+    cholmod_dense bv = dense_view(b.data(), n_, 1);
+    cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
+    cholmod_sparse* reach = nullptr;
+    std::vector<Triplet> entries;
+    bool ok = true;
+    for (Index j = 0; j < B.cols() && ok; ++j) {
+      int count = 0;
+      for (SparseMatrix::InnerIterator it(B, j); it; ++it) {
+        b(inverse[it.row()]) = it.value();
+        set_i[count++] = inverse[it.row()];
+      }
+      set_p[1] = count;
+      ok = cholmod_solve2(CHOLMOD_L, Ls, &bv, &set, &x, &reach, &y, &e, &common_);
+      if (ok) {
+        const int* rows = static_cast<const int*>(reach->i);
+        const double* value = static_cast<const double*>(x->x);
+        for (int p = 0; p < static_cast<const int*>(reach->p)[1]; ++p)
+          entries.emplace_back(rows[p], static_cast<int>(j), value[rows[p]]);
+      }
+      for (int p = 0; p < count; ++p) b(set_i[p]) = 0.0;
+    }
+    cholmod_free_dense(&x, &common_);
+    cholmod_free_dense(&y, &common_);
+    cholmod_free_dense(&e, &common_);
+    cholmod_free_sparse(&reach, &common_);
+    cholmod_free_factor(&Ls, &common_);
+    if (!ok) throw NumericalError("CHOLMOD: sparse forward substitution failed (out of memory?)");
+    SparseMatrix Y(n_, B.cols());
+    Y.setFromTriplets(entries.begin(), entries.end());
+    return Y;
+  }
+
+  void release() {
+    cholmod_free_dense(&solution_, &common_);
+    cholmod_free_dense(&work_y_, &common_);
+    cholmod_free_dense(&work_e_, &common_);
+    cholmod_free_factor(&L_, &common_);
+    cholmod_finish(&common_);
+  }
+
   Index n_;
-  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+  // Solves change CHOLMOD's status fields and reuse the workspaces below:
+  // mutable, and one solve at a time per inverse.
+  mutable cholmod_common common_;
+  cholmod_factor* L_ = nullptr;
+  mutable cholmod_dense *solution_ = nullptr, *work_y_ = nullptr, *work_e_ = nullptr;
 };
 
 class DiagonalInverse final : public SpdInverse {
@@ -45,18 +179,6 @@ class DiagonalInverse final : public SpdInverse {
 };
 
 }  // namespace
-
-Matrix SpdInverse::gram(const SparseMatrix& B) const {
-  const Index m = B.cols();
-  Matrix G(m, m);
-  for (Index c0 = 0; c0 < m; c0 += kBlock) {
-    const Index nc = std::min(kBlock, m - c0);
-    Matrix Y = Matrix(B.middleCols(c0, nc));
-    solve_in_place(Y);
-    G.middleCols(c0, nc) = B.transpose() * Y;
-  }
-  return 0.5 * (G + G.transpose());  // symmetric to the last bit
-}
 
 std::unique_ptr<SpdInverse> make_cholesky_inverse(const SparseMatrix& X, const std::string& what) {
   return std::make_unique<CholeskyInverse>(X, what);

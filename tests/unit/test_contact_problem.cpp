@@ -241,6 +241,23 @@ TEST(SpdInverse, CholeskyAndDiagonalAgreeWithDenseAlgebra) {
   EXPECT_LE((diag->gram(B) - Wd).cwiseAbs().maxCoeff(), 1e-15);
 }
 
+TEST(SpdInverse, SparseGramMatchesDenseSolves) {
+  // The Cholesky Gram matrix comes from sparse forward substitutions
+  // (Y' Y, Y = L^-1 P B); it must be B' X^-1 B as full dense solves give it,
+  // to round-off, on the stepper's own B and X = M + beta dt^2 K.
+  PlateProblem pp;
+  const auto& P = *pp.problem;
+  const nbm_test::Sparse X = P.M() + (0.25 * 1e-4) * P.K();
+  const auto inverse = nbm::make_cholesky_inverse(X, "X");
+  const nbm_test::Sparse& B = P.constraint_basis();
+  Mat Y = Mat(B);
+  inverse->solve_in_place(Y);
+  const Mat W_dense = Mat(B).transpose() * Y;
+  const Mat W = inverse->gram(B);
+  EXPECT_LE((W - W_dense).cwiseAbs().maxCoeff(), 1e-12 * W_dense.cwiseAbs().maxCoeff());
+  EXPECT_EQ(W, W.transpose());
+}
+
 TEST(SpdInverse, ErrorsNameTheMatrix) {
   Mat A = Mat::Identity(3, 3);
   A(1, 1) = -1;
