@@ -3,6 +3,7 @@
 # runs of edp/cantilever-plate-periodic.edp (paper Figure 3):
 #   docs/cantilever-periodic.png          |u| over one period (massless boundary)
 #   docs/cantilever-periodic-probe.png    probe motion and smallest gap over one period
+#   docs/cantilever-periodic-family.png   period against energy along the orbit's family
 #   docs/cantilever-periodic.md           summary of both mass treatments and the
 #                                         harmonic-balance / shooting agreement against H
 # Needs a build (scripts/build.sh); intermediate files go to out/figures.
@@ -32,6 +33,7 @@ for H in 20 40 80 160; do
 done
 cp cantilever-H40-snapshots.png "$repo/docs/cantilever-periodic.png"
 cp cantilever-H40-probe.png "$repo/docs/cantilever-periodic-probe.png"
+cp cantilever-H40-family.png "$repo/docs/cantilever-periodic-family.png"
 for H in 40 160; do
   out=$(run -harmonics $H -mass consistent -condition displacement -tau 0.3 -out cantilever-consistent-H$H)
   row "consistent (tau 0.3)" $H "$out"

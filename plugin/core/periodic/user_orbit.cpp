@@ -262,13 +262,22 @@ OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last,
   };
   const PeriodicOrbit before = orbit_of(previous), after = orbit_of(last);
   ContinuationOptions c;
-  c.step = step;
   c.length = std::max(after.u0.cwiseAbs().maxCoeff(), 1e-300);
   c.time = after.period;
   c.velocity = c.length * 2 * M_PI / c.time;
-  const PeriodicOrbit next = continuation_step(m.field(), before, after, m.conditions, c);
+  // The period map is only piecewise smooth: where the corrector fails
+  // (near a switch appearing or a branch point), shorter steps follow.
+  PeriodicOrbit next;
+  for (c.step = step;; c.step /= 4) {
+    try {
+      next = continuation_step(m.field(), before, after, m.conditions, c);
+      break;
+    } catch (const NumericalError&) {
+      if (c.step < step / 60) throw;
+    }
+  }
   std::ostringstream method;
-  method << "method pseudo-arclength continuation, step " << step << " (shooting, "
+  method << "method pseudo-arclength continuation, step " << c.step << " (shooting, "
          << (m.conditions.half_period ? "half period" : "full period") << ", exact flow)\n";
   return describe(last.model, next, OrbitReport{}, method.str());
 }

@@ -72,9 +72,9 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
 /// computed by shooting (periodic_orbit or continue_orbit) on the same
 /// problem, load and reduced basis: pseudo-arclength continuation
 /// (continuation.hpp), `step` further along the family in unknowns scaled by
-/// the last orbit's amplitude, velocity scale and period. Throws InputError
-/// on orbits that do not belong together, NumericalError if the corrector
-/// does not converge (retry with a shorter step).
+/// the last orbit's amplitude, velocity scale and period; if the corrector
+/// fails, step/4, step/16 and step/64. Throws InputError on orbits that do
+/// not belong together, NumericalError if no step converges.
 OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last, double step);
 
 /// The user displacement (and velocity) along the orbit at the given times
