@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <cmath>
 
 #include "bars.hpp"
@@ -177,10 +178,17 @@ TEST(BarOrbits, AtTheContinuumPeriodShootingFindsOrbitsNearTheContinuumOne) {
       EXPECT_EQ(orbit.switches.size(), 2u) << N;  // one contact phase
       const double profile = (orbit.u0 - exact).norm() * std::sqrt(bar.h() / bar.L) / bar.g;
       const double E_continuum = bar.E * bar.g * bar.g / (2 * bar.L * (1 - tau) * (1 - tau));
+      // Conditioning of the orbit at a fixed period: the eighth smallest
+      // singular value of (monodromy - I), which falls like h^2 or faster
+      // (low modes nearly resonant with the period): the orbit's distance to
+      // the continuum one is the discretisation error amplified by its inverse.
+      const Eigen::JacobiSVD<Matrix> svd(orbit.monodromy - Matrix::Identity(2 * n, 2 * n));
+      const double sigma8 = svd.singularValues()(2 * n - 8);
       std::printf("fixed-gap bar, T = 3.618 L/c, %s, N = %2d: contact time %.4f L/c (continuum "
-                  "%.3f), rest profile L2 error %.4f g, energy %.4f x the continuum's\n",
+                  "%.3f), rest profile L2 error %.4f g, energy %.4f x the continuum's, "
+                  "8th smallest singular value of X - I %.1e\n",
                   massless ? "massless" : "paper NBM", N, orbit.contact_time * bar.c() / bar.L,
-                  tau, profile, orbit.energy_start(3) / E_continuum);
+                  tau, profile, orbit.energy_start(3) / E_continuum, sigma8);
     }
 }
 
