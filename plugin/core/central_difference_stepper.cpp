@@ -62,19 +62,20 @@ CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem
 }
 
 void CentralDifferenceStepper::solve_acceleration(const Vector& F) {
-  const Vector r = F - problem_.K() * u_;
-  solver_.solve(active_, r, Vector::Zero(problem_.n_contact()), a_);
+  r_ = F;
+  r_.noalias() -= problem_.K() * u_;
+  solver_.solve(active_, r_, a_);
 }
 
 StepReport CentralDifferenceStepper::step(const Vector& F_next) {
   if (!initialized_) throw InputError("step: the stepper has no initial state");
   StepReport report;
   report.active_set_iterations = 1;
-  const Vector a_old = a_;
+  a_old_ = a_;
   u_ += dt_ * v_ + (0.5 * dt_ * dt_) * a_;
   active_ = boundary_.enforce(u_, F_next, active_).active;
   solve_acceleration(F_next);
-  v_ += (0.5 * dt_) * (a_old + a_);
+  v_ += (0.5 * dt_) * (a_old_ + a_);
   finish_step(F_next);
   return report;
 }

@@ -33,6 +33,7 @@ class CentralDifferenceStepper final : public Stepper {
   SparseMatrix lumped_;
   ConstrainedSolver solver_;  // before critical_dt_: it validates the lumped mass
   double critical_dt_;
+  Vector a_old_, r_;  // workspaces of a step
 };
 
 }  // namespace nbm

@@ -5,7 +5,17 @@
 namespace nbm {
 
 ConstrainedSolver::ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B)
-    : X_(std::move(X)), B_(B), n_c_(B.cols() / 2), W_(X_->gram(B)) {}
+    : X_(std::move(X)),
+      B_(B),
+      n_c_(B.cols() / 2),
+      W_(X_->gram(B)),
+      zero_(Vector::Zero(n_c_)),
+      mu_(n_c_),
+      correction_(B.rows()) {}
+
+void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, Vector& x) const {
+  solve(active, r, zero_, x);
+}
 
 void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Vector& h,
                               Vector& x) const {
@@ -20,13 +30,12 @@ void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Ve
   });
   x = r;
   X_->solve_in_place(x);
-  Vector mu(n_c_);
-  for (Index k = 0; k < n_c_; ++k) mu(k) = h(k) - B_.col(column(active, k)).dot(x);
-  mu = schur.solve(mu);
-  Vector correction = Vector::Zero(x.size());
-  for (Index k = 0; k < n_c_; ++k) correction += mu(k) * B_.col(column(active, k));
-  X_->solve_in_place(correction);
-  x += correction;
+  for (Index k = 0; k < n_c_; ++k) mu_(k) = h(k) - B_.col(column(active, k)).dot(x);
+  mu_ = schur.solve(mu_);
+  correction_.setZero();
+  for (Index k = 0; k < n_c_; ++k) correction_ += mu_(k) * B_.col(column(active, k));
+  X_->solve_in_place(correction_);
+  x += correction_;
 }
 
 }  // namespace nbm

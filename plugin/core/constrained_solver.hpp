@@ -22,7 +22,11 @@ class ConstrainedSolver {
   ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B);
 
   /// x solves X x = r + G^T mu, G x = h (h: one value per contact node).
+  /// Once x has its size and the Schur complement of the set is cached, a
+  /// solve allocates nothing (workspaces below: one solve at a time).
   void solve(const ActiveSet& active, const Vector& r, const Vector& h, Vector& x) const;
+  /// The same with h = 0 (accelerations, velocities).
+  void solve(const ActiveSet& active, const Vector& r, Vector& x) const;
 
   const SpdInverse& inverse() const { return *X_; }
 
@@ -36,6 +40,8 @@ class ConstrainedSolver {
   Index n_c_;
   Matrix W_;
   mutable ActiveSetCache<Eigen::LDLT<Matrix>> schur_;
+  const Vector zero_;                  // h = 0
+  mutable Vector mu_, correction_;
 };
 
 }  // namespace nbm

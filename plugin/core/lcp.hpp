@@ -16,6 +16,7 @@
 
 #include <vector>
 
+#include "active_set.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -39,6 +40,30 @@ class LcpSolver {
   /// max_i |min(z_i, w_i)| relative to the scale of (q, A z): a merit
   /// function that is zero exactly at the solution.
   static double residual(const Matrix& A, const Vector& q, const Vector& z);
+};
+
+/// The LCP of one matrix solved for a new q at every time step. Same pivoting
+/// and result as LcpSolver::solve, but the Cholesky factors of the principal
+/// blocks are kept per active set (the sets recur from step to step: a step
+/// whose set is known costs two triangular solves and a product, not a
+/// factorization), and so are the workspaces: once every set a solve meets
+/// is known, the solve allocates nothing. One solve at a time.
+class CachedLcpSolver {
+ public:
+  /// Checks A as LcpSolver::solve does (size, finite, symmetric), once.
+  explicit CachedLcpSolver(Matrix A);
+
+  /// The solution for q (size n), warm-started from `guess` (size n); valid
+  /// until the next call. Throws as LcpSolver::solve does.
+  const LcpResult& solve(const Vector& q, const std::vector<bool>& guess) const;
+
+ private:
+  Matrix A_;
+  double a_max_;
+  mutable ActiveSetCache<Eigen::LLT<Matrix>> principal_blocks_;
+  mutable LcpResult result_;
+  mutable std::vector<Index> free_, infeasible_;
+  mutable Vector rhs_;
 };
 
 }  // namespace nbm

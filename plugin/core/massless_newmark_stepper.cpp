@@ -17,7 +17,8 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
   S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
   // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
   const Index nc = problem.n_contact();
-  lcp_matrix_ = (beta * dt * dt) * S_->gram(problem.constraint_basis().rightCols(nc));
+  lcp_ = std::make_unique<CachedLcpSolver>((beta * dt * dt) *
+                                            S_->gram(problem.constraint_basis().rightCols(nc)));
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const Vector& F) {
@@ -31,37 +32,39 @@ void MasslessNewmarkStepper::solve_acceleration(const Vector& F) {
   for (Index c : problem_.contact_index()) r(c) = 0.0;
   make_cholesky_inverse(M_reg, "M (interior block)")->solve_in_place(r);
   a_ = r;
-  boundary_.project(a_, active_, Vector::Zero(nc));
+  boundary_.project(a_, active_);
 }
 
 StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
   if (!initialized_) throw InputError("step: the stepper has no initial state");
   const double dt = dt_, bdt2 = beta_ * dt * dt;
-  const Vector u_hat = u_ + dt * v_ + (dt * dt * (0.5 - beta_)) * a_;
-  const Vector v_pred = v_ + (dt * (1 - gamma_)) * a_;
+  u_hat_ = u_ + dt * v_ + (dt * dt * (0.5 - beta_)) * a_;
+  v_pred_ = v_ + (dt * (1 - gamma_)) * a_;
   const auto& c = problem_.contact_index();
   const Index nc = problem_.n_contact();
 
   // In acceleration form, u = u_hat + bdt2 a (no cancellation at small dt):
   // S a = F - K u_hat - E_C lambda. Free step, then the LCP in lambda
   // (header): z = lambda, w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda).
-  Vector a = F_next - problem_.K() * u_hat;
+  Vector& a = acceleration_;
+  a = F_next;
+  a.noalias() -= problem_.K() * u_hat_;
   S_->solve_in_place(a);
-  Vector q(nc);
-  for (Index k = 0; k < nc; ++k) q(k) = (problem_.gaps()(k) - u_hat(c[k])) - bdt2 * a(c[k]);
-  ActiveSet open(nc);
-  for (Index k = 0; k < nc; ++k) open[k] = !active_[k];  // z = lambda = 0 where open
-  const LcpResult lcp = LcpSolver::solve(lcp_matrix_, q, open);
+  q_.resize(nc);
+  for (Index k = 0; k < nc; ++k) q_(k) = (problem_.gaps()(k) - u_hat_(c[k])) - bdt2 * a(c[k]);
+  open_.resize(nc);
+  for (Index k = 0; k < nc; ++k) open_[k] = !active_[k];  // z = lambda = 0 where open
+  const LcpResult& lcp = lcp_->solve(q_, open_);
   if (lcp.z.cwiseAbs().maxCoeff() > 0) {
-    Vector correction = Vector::Zero(a.size());
-    for (Index k = 0; k < nc; ++k) correction(c[k]) = -lcp.z(k);
-    S_->solve_in_place(correction);
-    a += correction;
+    correction_.setZero(a.size());
+    for (Index k = 0; k < nc; ++k) correction_(c[k]) = -lcp.z(k);
+    S_->solve_in_place(correction_);
+    a += correction_;
   }
 
   a_ = a;
-  v_ = v_pred + (gamma_ * dt) * a_;
-  u_ = u_hat + bdt2 * a;
+  v_ = v_pred_ + (gamma_ * dt) * a_;
+  u_ = u_hat_ + bdt2 * a;
   // The LCP's z is lambda: z_k = 0 (lcp.active) where contact k is open.
   for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
   // Closed contacts sit exactly on the obstacle, not only to the round-off of

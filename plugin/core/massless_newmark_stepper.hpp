@@ -15,6 +15,7 @@
 
 #include <memory>
 
+#include "lcp.hpp"
 #include "spd_inverse.hpp"
 #include "stepper.hpp"
 
@@ -40,7 +41,10 @@ class MasslessNewmarkStepper final : public Stepper {
  private:
   double beta_, gamma_;
   std::unique_ptr<SpdInverse> S_;
-  Matrix lcp_matrix_;  // beta dt^2 W_CC
+  std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
+  // Workspaces of a step (sized by the first one).
+  Vector u_hat_, v_pred_, acceleration_, q_, correction_;
+  ActiveSet open_;
 };
 
 }  // namespace nbm

@@ -32,95 +32,104 @@ void NewmarkStepper::solve_acceleration(const Vector& F) {
   const ConstrainedSolver mass(make_cholesky_inverse(problem_.M(), "M"),
                                problem_.constraint_basis());
   const Vector r = F - problem_.K() * u_;
-  mass.solve(active_, r, Vector::Zero(problem_.n_contact()), a_);
+  mass.solve(active_, r, a_);
 }
 
-void NewmarkStepper::solve_step(const ActiveSet& active, const Vector& u_pred, const Vector& F,
-                                Vector& u_next, Vector& a_next) const {
+void NewmarkStepper::solve_step(const ActiveSet& active, const Vector& F, Vector& u_next,
+                                Vector& a_next) {
   const double bdt2 = parameters_.beta * dt_ * dt_;
-  const Vector h = boundary_.displacement_constraint(active, F);
-  Vector u_hat = u_pred;
-  boundary_.project(u_hat, active, h);
+  boundary_.displacement_constraint(active, F, h_);
+  u_hat_ = u_pred_;
+  boundary_.project(u_hat_, active, h_);
   // S u = M u_hat + bdt2 F + G^T mu with u = u_hat + bdt2 a is
   // S a = F - K u_hat + G^T mu' and, since G u_hat = h, G a = 0.
-  const Vector r = F - problem_.K() * u_hat;
-  solver_.solve(active, r, Vector::Zero(problem_.n_contact()), a_next);
+  r_ = F;
+  r_.noalias() -= problem_.K() * u_hat_;
+  solver_.solve(active, r_, a_next);
   // Closed contacts: a_C = 0 and u_C = g hold exactly, not only to the
   // round-off of the solve (which grows with beta dt^2 |K|).
   const auto& c = problem_.contact_index();
   for (std::size_t k = 0; k < c.size(); ++k)
     if (active[k]) a_next(c[k]) = 0.0;
-  u_next = u_hat + bdt2 * a_next;
+  u_next = u_hat_ + bdt2 * a_next;
+}
+
+NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
+  if (n_tried_ == tried_.size()) tried_.emplace_back();
+  return tried_[n_tried_++];
 }
 
 StepReport NewmarkStepper::step(const Vector& F_next) {
   if (!initialized_) throw InputError("step: the stepper has no initial state");
   const double dt = dt_, beta = parameters_.beta, gamma = parameters_.gamma;
-  const Vector u_pred = u_ + dt * v_ + (dt * dt * (0.5 - beta)) * a_;
-  const Vector v_pred = v_ + (dt * (1 - gamma)) * a_;
+  u_pred_ = u_ + dt * v_ + (dt * dt * (0.5 - beta)) * a_;
+  v_pred_ = v_ + (dt * (1 - gamma)) * a_;
 
   // Fixed point on the active set at t_{n+1} (§5): solve with a guess, then
   // take the LCP's set at the new interior displacement until they agree.
-  // Every solve is kept as a candidate for the fallback, with how far its set
-  // is from being consistent (NodalBoundary::violation).
-  struct Candidate {
-    ActiveSet set;
-    Vector u_next, a_next;
-    double violation;
-  };
+  // Every solve is kept as a candidate for the fallback.
   StepReport report;
-  std::vector<Candidate> tried;
-  ActiveSet guess = active_;
-  Vector u_next, a_next;
+  n_tried_ = 0;
+  guess_ = active_;
   bool consistent = false;
   while (true) {
     ++report.active_set_iterations;
-    solve_step(guess, u_pred, F_next, u_next, a_next);
-    const double violation = boundary_.violation(u_next, F_next, guess);
+    solve_step(guess_, F_next, u_next_, a_next_);
+    const double violation = boundary_.violation(u_next_, F_next, guess_);
     if (violation <= kConsistencyTolerance) {
       consistent = true;
       break;
     }
-    tried.push_back({guess, u_next, a_next, violation});
-    Vector u_lcp = u_next;
-    guess = boundary_.enforce(u_lcp, F_next, guess).active;
-    const bool seen = std::any_of(tried.begin(), tried.end(),
-                                  [&](const Candidate& c) { return c.set == guess; });
+    Candidate& tried = add_candidate();
+    tried.set = guess_;
+    tried.u_next = u_next_;
+    tried.a_next = a_next_;
+    tried.violation = violation;
+    u_lcp_ = u_next_;
+    guess_ = boundary_.enforce(u_lcp_, F_next, guess_).active;
+    const bool seen = std::any_of(tried_.begin(), tried_.begin() + n_tried_,
+                                  [&](const Candidate& c) { return c.set == guess_; });
     if (seen || report.active_set_iterations >= parameters_.max_active_set_iterations)
       break;  // cycling
   }
+  if (consistent)
+    active_ = guess_;
+  else
+    fall_back(F_next, report);
 
-  ActiveSet final_set = guess;
-  if (!consistent) {
-    // Fallback (§5): no set is consistent at t_{n+1}. The dynamics use the
-    // least inconsistent of the sets tried and of the LCP's set at the
-    // predictor; u_C^{n+1} then comes from the LCP at u_O^{n+1}, so
-    // impenetrability stays exact. (A contact grazed by 1e-14 thus keeps the
-    // free motion instead of being held for a step.)
-    report.fallback = true;
-    Vector u_lcp = u_pred;
-    const ActiveSet predictor_set = boundary_.enforce(u_lcp, F_next, active_).active;
-    if (std::none_of(tried.begin(), tried.end(),
-                     [&](const Candidate& c) { return c.set == predictor_set; })) {
-      ++report.active_set_iterations;
-      solve_step(predictor_set, u_pred, F_next, u_next, a_next);
-      tried.push_back(
-          {predictor_set, u_next, a_next, boundary_.violation(u_next, F_next, predictor_set)});
-    }
-    const Candidate& best = *std::min_element(
-        tried.begin(), tried.end(),
-        [](const Candidate& a, const Candidate& b) { return a.violation < b.violation; });
-    u_next = best.u_next;
-    a_next = best.a_next;
-    final_set = boundary_.enforce(u_next, F_next, best.set).active;
-  }
-
-  a_ = a_next;
-  v_ = v_pred + (gamma * dt) * a_;
-  u_ = u_next;
-  active_ = final_set;
+  a_ = a_next_;
+  v_ = v_pred_ + (gamma * dt) * a_;
+  u_ = u_next_;
   finish_step(F_next);
   return report;
+}
+
+void NewmarkStepper::fall_back(const Vector& F_next, StepReport& report) {
+  // No set is consistent at t_{n+1} (§5). The dynamics use the least
+  // inconsistent of the sets tried and of the LCP's set at the predictor;
+  // u_C^{n+1} then comes from the LCP at u_O^{n+1}, so impenetrability stays
+  // exact. (A contact grazed by 1e-14 thus keeps the free motion instead of
+  // being held for a step.)
+  report.fallback = true;
+  u_lcp_ = u_pred_;
+  predictor_set_ = boundary_.enforce(u_lcp_, F_next, active_).active;
+  const auto tried_end = tried_.begin() + n_tried_;
+  if (std::none_of(tried_.begin(), tried_end,
+                   [&](const Candidate& c) { return c.set == predictor_set_; })) {
+    ++report.active_set_iterations;
+    solve_step(predictor_set_, F_next, u_next_, a_next_);
+    Candidate& tried = add_candidate();
+    tried.set = predictor_set_;
+    tried.u_next = u_next_;
+    tried.a_next = a_next_;
+    tried.violation = boundary_.violation(u_next_, F_next, predictor_set_);
+  }
+  const Candidate& best = *std::min_element(
+      tried_.begin(), tried_.begin() + n_tried_,
+      [](const Candidate& a, const Candidate& b) { return a.violation < b.violation; });
+  u_next_ = best.u_next;
+  a_next_ = best.a_next;
+  active_ = boundary_.enforce(u_next_, F_next, best.set).active;
 }
 
 }  // namespace nbm

@@ -39,11 +39,30 @@ class NewmarkStepper final : public Stepper {
   /// solved in acceleration form (S a = F - K u_hat + G^T mu', G a = 0,
   /// u = u_hat + beta dt^2 a): a is never formed as (u - u_hat)/(beta dt^2),
   /// which loses every digit when beta dt^2 |a| is below the round-off of u.
-  void solve_step(const ActiveSet& active, const Vector& u_pred, const Vector& F,
-                  Vector& u_next, Vector& a_next) const;
+  void solve_step(const ActiveSet& active, const Vector& F, Vector& u_next, Vector& a_next);
+
+  /// A solve kept for the fallback, with how far its set is from being
+  /// consistent (NodalBoundary::violation).
+  struct Candidate {
+    ActiveSet set;
+    Vector u_next, a_next;
+    double violation = 0;
+  };
+  /// Appends a candidate to the tried_ ones; the slots are reused from step
+  /// to step, so that keeping candidates does not allocate once warm.
+  Candidate& add_candidate();
+  /// Step of the fallback (§5), when no active set tried was consistent.
+  void fall_back(const Vector& F_next, StepReport& report);
 
   NewmarkParameters parameters_;
   ConstrainedSolver solver_;
+  // Workspaces of a step (sized by the first one): u_pred_, v_pred_ the
+  // predictors; u_hat_, h_, r_ of solve_step; the guessed active set and the
+  // solution for it; the candidates tried_[0 .. n_tried_).
+  Vector u_pred_, v_pred_, u_hat_, h_, r_, u_next_, a_next_, u_lcp_;
+  ActiveSet guess_, predictor_set_;
+  std::vector<Candidate> tried_;
+  std::size_t n_tried_ = 0;
 };
 
 }  // namespace nbm

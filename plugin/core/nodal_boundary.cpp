@@ -1,5 +1,7 @@
 #include "nodal_boundary.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -8,63 +10,76 @@
 namespace nbm {
 NodalBoundary::NodalBoundary(const ContactProblem& problem)
     : problem_(problem),
-      K_C_(problem.constraint_basis().leftCols(problem.n_contact()).transpose()) {
+      K_C_(problem.constraint_basis().leftCols(problem.n_contact()).transpose()),
+      lcp_(problem.K_CC()),
+      zero_(Vector::Zero(problem.n_contact())),
+      q_(problem.n_contact()),
+      work_(problem.n_contact()),
+      Kx_(problem.n_contact()) {
   Eigen::LLT<Matrix> llt(problem.K_CC());
   if (llt.info() != Eigen::Success)
     throw InputError(
         "K: the contact block K_CC is not positive definite; the contact nodes must not "
         "carry a rigid motion of their own (check the contact dofs and the Dirichlet dofs)");
+  open_.reserve(problem.n_contact());
 }
 
-LcpResult NodalBoundary::enforce(Vector& u, const Vector& F, const ActiveSet& guess) const {
+const LcpResult& NodalBoundary::enforce(Vector& u, const Vector& F, const ActiveSet& guess) const {
   const auto& c = problem_.contact_index();
   const Vector& g = problem_.gaps();
-  Vector uC(c.size());
-  for (std::size_t k = 0; k < c.size(); ++k) uC(k) = u(c[k]);
   // lambda = F_C - K_CO u_O - K_CC u_C and z = g - u_C give lambda = q + K_CC z
   // with q = F_C - (K u)_C + K_CC (u_C - g).
-  const Vector q = reactions(u, F) + problem_.K_CC() * (uC - g);
-  LcpResult r = LcpSolver::solve(problem_.K_CC(), q, guess);
+  for (std::size_t k = 0; k < c.size(); ++k) work_(k) = u(c[k]) - g(k);
+  reactions(u, F, q_);
+  q_.noalias() += problem_.K_CC() * work_;
+  const LcpResult& r = lcp_.solve(q_, guess);
   for (std::size_t k = 0; k < c.size(); ++k) u(c[k]) = g(k) - r.z(k);
   return r;
 }
 
+void NodalBoundary::project(Vector& x, const ActiveSet& active) const { project(x, active, zero_); }
+
 void NodalBoundary::project(Vector& x, const ActiveSet& active, const Vector& h) const {
   const auto& c = problem_.contact_index();
-  std::vector<Index> open;
+  open_.clear();
   for (std::size_t k = 0; k < c.size(); ++k) {
     if (active[k])
       x(c[k]) = h(k);
     else
-      open.push_back(static_cast<Index>(k));
+      open_.push_back(static_cast<Index>(k));
   }
-  if (open.empty()) return;
-  const Index m = static_cast<Index>(open.size());
+  if (open_.empty()) return;
+  const Index m = static_cast<Index>(open_.size());
   const auto& llt = open_block_.get(active, [&] {
     Matrix A(m, m);
     for (Index a = 0; a < m; ++a)
-      for (Index b = 0; b < m; ++b) A(a, b) = problem_.K_CC()(open[a], open[b]);
+      for (Index b = 0; b < m; ++b) A(a, b) = problem_.K_CC()(open_[a], open_[b]);
     return Eigen::LLT<Matrix>(A);
   });
-  const Vector Kx = K_C_ * x;
-  Vector delta(m);
-  for (Index a = 0; a < m; ++a) delta(a) = h(open[a]) - Kx(open[a]);
-  delta = llt.solve(delta);
-  for (Index a = 0; a < m; ++a) x(c[open[a]]) += delta(a);
+  Kx_.noalias() = K_C_ * x;
+  auto delta = work_.head(m);
+  for (Index a = 0; a < m; ++a) delta(a) = h(open_[a]) - Kx_(open_[a]);
+  llt.solveInPlace(delta);
+  for (Index a = 0; a < m; ++a) x(c[open_[a]]) += delta(a);
 }
 
-Vector NodalBoundary::displacement_constraint(const ActiveSet& active, const Vector& F) const {
+void NodalBoundary::displacement_constraint(const ActiveSet& active, const Vector& F,
+                                            Vector& h) const {
   const auto& c = problem_.contact_index();
-  Vector h(c.size());
+  h.resize(static_cast<Index>(c.size()));
   for (std::size_t k = 0; k < c.size(); ++k) h(k) = active[k] ? problem_.gaps()(k) : F(c[k]);
-  return h;
 }
 
 Vector NodalBoundary::reactions(const Vector& u, const Vector& F) const {
-  const auto& c = problem_.contact_index();
-  Vector lambda = -(K_C_ * u);
-  for (std::size_t k = 0; k < c.size(); ++k) lambda(k) += F(c[k]);
+  Vector lambda(problem_.n_contact());
+  reactions(u, F, lambda);
   return lambda;
+}
+
+void NodalBoundary::reactions(const Vector& u, const Vector& F, Vector& lambda) const {
+  const auto& c = problem_.contact_index();
+  lambda.noalias() = K_C_ * u;
+  for (std::size_t k = 0; k < c.size(); ++k) lambda(k) = F(c[k]) - lambda(k);
 }
 
 Vector NodalBoundary::gaps(const Vector& u) const {
@@ -80,18 +95,22 @@ bool NodalBoundary::consistent(const Vector& u, const Vector& F, const ActiveSet
 
 double NodalBoundary::violation(const Vector& u, const Vector& F, const ActiveSet& active) const {
   const auto& c = problem_.contact_index();
-  const Vector gap = gaps(u);
-  const Vector lambda = reactions(u, F);
+  const Vector& g = problem_.gaps();
+  reactions(u, F, q_);  // lambda
   // Scales: displacements (|u|, |g|) and the forces they produce (|K_C| |u|).
-  const double u_scale = std::max(u.cwiseAbs().maxCoeff(), problem_.gaps().cwiseAbs().maxCoeff());
+  const double u_scale = std::max(u.cwiseAbs().maxCoeff(), g.cwiseAbs().maxCoeff());
   double f_scale = 0;
   for (std::size_t k = 0; k < c.size(); ++k) f_scale = std::max(f_scale, std::abs(F(c[k])));
-  const Vector Kabs_u = K_C_.cwiseAbs() * u.cwiseAbs();
-  f_scale = std::max(f_scale, Kabs_u.maxCoeff());
+  Kx_.setZero();
+  for (Index j = 0; j < K_C_.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(K_C_, j); it; ++it)
+      Kx_(it.row()) += std::abs(it.value()) * std::abs(u(j));
+  f_scale = std::max(f_scale, Kx_.maxCoeff());
   double v = 0;
   for (std::size_t k = 0; k < c.size(); ++k) {
-    if (active[k] && lambda(k) < 0) v = std::max(v, -lambda(k) / f_scale);
-    if (!active[k] && gap(k) < 0) v = std::max(v, -gap(k) / u_scale);
+    const double gap = g(k) - u(c[k]), lambda = q_(k);
+    if (active[k] && lambda < 0) v = std::max(v, -lambda / f_scale);
+    if (!active[k] && gap < 0) v = std::max(v, -gap / u_scale);
   }
   return v;
 }

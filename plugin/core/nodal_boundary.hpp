@@ -20,20 +20,24 @@ class NodalBoundary {
   explicit NodalBoundary(const ContactProblem& problem);
 
   /// Solves the LCP at the interior part of u under the load F and overwrites
-  /// u_C with its solution; returns the LCP result (z = gaps, w = reactions).
-  LcpResult enforce(Vector& u, const Vector& F, const ActiveSet& guess) const;
+  /// u_C with its solution; returns the LCP result (z = gaps, w = reactions),
+  /// valid until the next call.
+  const LcpResult& enforce(Vector& u, const Vector& F, const ActiveSet& guess) const;
 
   /// Imposes G x = h for the given active set by changing x_C only:
   /// x_i = h_i on closed contacts, (K x)_i = h_i on open ones.
-  /// With h = (g, F) this is u_C = A u_O + e; with h = 0, v_C = A v_O.
+  /// With h = (g, F) this is u_C = A u_O + e.
   void project(Vector& x, const ActiveSet& active, const Vector& h) const;
+  /// The same with h = 0: v_C = A v_O (and a_C = A a_O).
+  void project(Vector& x, const ActiveSet& active) const;
 
   /// Right-hand side h of G u = h for the displacement: g on closed
   /// contacts, F_C on open ones.
-  Vector displacement_constraint(const ActiveSet& active, const Vector& F) const;
+  void displacement_constraint(const ActiveSet& active, const Vector& F, Vector& h) const;
 
   /// lambda = F_C - (K u)_C (method.md §2).
   Vector reactions(const Vector& u, const Vector& F) const;
+  void reactions(const Vector& u, const Vector& F, Vector& lambda) const;
   /// gap = g - u_C.
   Vector gaps(const Vector& u) const;
 
@@ -50,7 +54,13 @@ class NodalBoundary {
  private:
   const ContactProblem& problem_;
   SparseMatrix K_C_;  // stiffness rows of the contact dofs
+  CachedLcpSolver lcp_;  // of K_CC
   mutable ActiveSetCache<Eigen::LLT<Matrix>> open_block_;  // K_In,In factors
+  // Workspaces (one value per contact node), so that the methods called at
+  // every step do not allocate: one call at a time.
+  const Vector zero_;
+  mutable Vector q_, work_, Kx_;
+  mutable std::vector<Index> open_;
 };
 
 }  // namespace nbm

@@ -82,14 +82,13 @@ void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
 
 void Stepper::start() {
   active_ = boundary_.enforce(u_, F_, {}).active;
-  boundary_.project(v_, active_, Vector::Zero(problem_.n_contact()));
+  boundary_.project(v_, active_);
   solve_acceleration(F_);
 }
 
 void Stepper::finish_step(const Vector& F_next) {
-  const Vector zero = Vector::Zero(problem_.n_contact());
-  boundary_.project(v_, active_, zero);
-  boundary_.project(a_, active_, zero);
+  boundary_.project(v_, active_);
+  boundary_.project(a_, active_);
   F_ = F_next;
   t_ += dt_;
 }

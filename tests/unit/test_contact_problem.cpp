@@ -149,8 +149,9 @@ TEST(NodalBoundary, EnforceSolvesTheLcpOfTheContactDofs) {
   // A wrong active set is not consistent.
   nbm::ActiveSet flipped = r.active;
   for (std::size_t k = 0; k < flipped.size(); ++k) flipped[k] = !flipped[k];
-  Vec u_wrong = u;
-  nb.project(u_wrong, flipped, nb.displacement_constraint(flipped, F));
+  Vec u_wrong = u, h;
+  nb.displacement_constraint(flipped, F, h);
+  nb.project(u_wrong, flipped, h);
   EXPECT_FALSE(nb.consistent(u_wrong, F, flipped));
 }
 

@@ -273,4 +273,40 @@ TEST(Lcp, ResidualIsZeroAtTheSolutionAndPositiveElsewhere) {
   EXPECT_GT(LcpSolver::residual(A, q, z_bad), 0.1);
 }
 
+// ------------------------------------------------------ CachedLcpSolver
+
+TEST(CachedLcp, GivesLcpSolversResultsBitForBit) {
+  // A sequence of q as a time loop makes them, warm-started from the last
+  // set: the cached factors must not change a bit of z, w, the set or the
+  // number of pivots, whether the set is new or met before.
+  std::mt19937 rng(31);
+  for (int n : {1, 6, 40}) {
+    const Mat A = nbm_test::random_spd(n, 30.0, rng);
+    const nbm::CachedLcpSolver cached(A);
+    std::vector<bool> guess;
+    for (int step = 0; step < 30; ++step) {
+      const Vec q = nbm_test::random_vector(n, rng) + Vec::Constant(n, step % 3 - 1.0);
+      const nbm::LcpResult ref = LcpSolver::solve(A, q, guess);
+      const nbm::LcpResult& r = cached.solve(q, guess);
+      ASSERT_EQ(r.z, ref.z);
+      ASSERT_EQ(r.w, ref.w);
+      ASSERT_EQ(r.active, ref.active);
+      ASSERT_EQ(r.pivots, ref.pivots);
+      guess = r.active;
+    }
+  }
+}
+
+TEST(CachedLcp, RejectsMalformedInput) {
+  Mat asymmetric = Mat::Identity(2, 2);
+  asymmetric(0, 1) = 1;
+  nbm_test::expect_throw_with<nbm::InputError>([&] { nbm::CachedLcpSolver{asymmetric}; },
+                                               {"not symmetric"});
+  const nbm::CachedLcpSolver cached(Mat::Identity(2, 2));
+  nbm_test::expect_throw_with<nbm::InputError>([&] { cached.solve(Vec::Ones(3), {}); },
+                                               {"q has size 3"});
+  nbm_test::expect_throw_with<nbm::InputError>(
+      [&] { cached.solve(Vec::Ones(2), {true}); }, {"warm-start"});
+}
+
 }  // namespace
