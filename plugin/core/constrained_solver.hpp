@@ -7,6 +7,12 @@
 // computed once, the Schur complement G X^{-1} G^T of an active set is a
 // principal submatrix of W: an active-set change costs a small dense
 // factorization (cached per set), never a new sparse one.
+//
+// With a Cholesky factor X = P' L L' P, Y = L^{-1} P B (sparse) is kept:
+// G X^{-1} r = Y_G^T y with y = L^{-1} P r, and x = P' L^{-T} (y + Y_G mu),
+// so a solve is one forward and one backward substitution, as an
+// unconstrained one. Otherwise (a diagonal X) x is X^{-1} r corrected by
+// X^{-1} G^T mu.
 #pragma once
 
 #include <memory>
@@ -20,6 +26,7 @@ namespace nbm {
 class ConstrainedSolver {
  public:
   ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B);
+  ConstrainedSolver(std::unique_ptr<CholeskyInverse> X, const SparseMatrix& B);
 
   /// x solves X x = r + G^T mu, G x = h (h: one value per contact node).
   /// Once x has its size and the Schur complement of the set is cached, a
@@ -35,9 +42,15 @@ class ConstrainedSolver {
   // the unit row if it is closed.
   Index column(const ActiveSet& active, Index k) const { return active[k] ? n_c_ + k : k; }
 
+  const Eigen::LDLT<Matrix>& schur(const ActiveSet& active) const;
+  void solve_with_factor(const ActiveSet& active, const Vector& r, const Vector& h,
+                         Vector& x) const;
+
   std::unique_ptr<SpdInverse> X_;
+  const CholeskyInverse* cholesky_ = nullptr;  // X_, when it is one
   const SparseMatrix& B_;
   Index n_c_;
+  SparseMatrix Y_;  // L^{-1} P B, with cholesky_
   Matrix W_;
   mutable ActiveSetCache<Eigen::LDLT<Matrix>> schur_;
   const Vector zero_;                  // h = 0

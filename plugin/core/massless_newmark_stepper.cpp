@@ -17,8 +17,8 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
   S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
   // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
   const Index nc = problem.n_contact();
-  lcp_ = std::make_unique<CachedLcpSolver>((beta * dt * dt) *
-                                            S_->gram(problem.constraint_basis().rightCols(nc)));
+  Y_ = S_->forward(problem.constraint_basis().rightCols(nc));
+  lcp_ = std::make_unique<CachedLcpSolver>((beta * dt * dt) * inner_products(Y_));
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const Vector& F) {
@@ -44,23 +44,21 @@ StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
   const Index nc = problem_.n_contact();
 
   // In acceleration form, u = u_hat + bdt2 a (no cancellation at small dt):
-  // S a = F - K u_hat - E_C lambda. Free step, then the LCP in lambda
-  // (header): z = lambda, w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda).
+  // S a = F - K u_hat - E_C lambda. The LCP in lambda (header): z = lambda,
+  // w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda), a_free_C = Y^T y.
   Vector& a = acceleration_;
   a = F_next;
   a.noalias() -= problem_.K() * u_hat_;
-  S_->solve_in_place(a);
+  S_->forward_in_place(a);  // y
   q_.resize(nc);
-  for (Index k = 0; k < nc; ++k) q_(k) = (problem_.gaps()(k) - u_hat_(c[k])) - bdt2 * a(c[k]);
+  for (Index k = 0; k < nc; ++k)
+    q_(k) = (problem_.gaps()(k) - u_hat_(c[k])) - bdt2 * Y_.col(k).dot(a);
   open_.resize(nc);
   for (Index k = 0; k < nc; ++k) open_[k] = !active_[k];  // z = lambda = 0 where open
   const LcpResult& lcp = lcp_->solve(q_, open_);
-  if (lcp.z.cwiseAbs().maxCoeff() > 0) {
-    correction_.setZero(a.size());
-    for (Index k = 0; k < nc; ++k) correction_(c[k]) = -lcp.z(k);
-    S_->solve_in_place(correction_);
-    a += correction_;
-  }
+  for (Index k = 0; k < nc; ++k)
+    if (lcp.z(k) != 0) a -= lcp.z(k) * Y_.col(k);
+  S_->backward_in_place(a);
 
   a_ = a;
   v_ = v_pred_ + (gamma_ * dt) * a_;

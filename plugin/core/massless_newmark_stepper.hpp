@@ -10,7 +10,10 @@
 // solved exactly: the step has a unique solution, found without iterating
 // over guessed active sets, and u_C satisfies the nodal boundary relation at
 // u_O^{n+1}, so impenetrability is exact. The step is solved in
-// acceleration form (u = u_hat + beta dt^2 a), exact at any dt.
+// acceleration form (u = u_hat + beta dt^2 a), exact at any dt, with one
+// forward and one backward substitution: with S = P' L L' P and
+// Y = L^-1 P E_C (sparse, kept), W_CC = Y^T Y, (S^-1 r)_C = Y^T y for
+// y = L^-1 P r, and a = P' L^-T (y - Y lambda).
 #pragma once
 
 #include <memory>
@@ -24,7 +27,8 @@ namespace nbm {
 class MasslessNewmarkStepper final : public Stepper {
  public:
   /// The problem must have a massless boundary (ContactProblem::
-  /// make_boundary_massless). Factors S once and forms W_CC (n_contact solves).
+  /// make_boundary_massless). Factors S once and forms Y and W_CC (n_contact
+  /// sparse forward substitutions).
   /// Throws InputError on beta, gamma out of (0, 1/2] x [1/2, 1] or a problem
   /// with boundary mass, NumericalError if S is not positive definite.
   MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
@@ -40,10 +44,11 @@ class MasslessNewmarkStepper final : public Stepper {
 
  private:
   double beta_, gamma_;
-  std::unique_ptr<SpdInverse> S_;
+  std::unique_ptr<CholeskyInverse> S_;
+  SparseMatrix Y_;                        // L^-1 P E_C
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   // Workspaces of a step (sized by the first one).
-  Vector u_hat_, v_pred_, acceleration_, q_, correction_;
+  Vector u_hat_, v_pred_, acceleration_, q_;
   ActiveSet open_;
 };
 

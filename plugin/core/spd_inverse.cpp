@@ -46,9 +46,9 @@ cholmod_sparse lower_view(const SparseMatrix& A) {
 // whose forward substitutions with sparse right-hand sides make the Gram
 // matrix cheap, and cholmod_solve2's reusable workspaces, which make a solve
 // free of heap allocations once the first one has sized them.
-class CholeskyInverse final : public SpdInverse {
+class CholmodInverse final : public CholeskyInverse {
  public:
-  CholeskyInverse(const SparseMatrix& X, const std::string& what) : n_(X.rows()) {
+  CholmodInverse(const SparseMatrix& X, const std::string& what) : n_(X.rows()), permuted_(n_) {
     cholmod_start(&common_);
     common_.final_asis = 1;
     common_.supernodal = CHOLMOD_SUPERNODAL;
@@ -61,36 +61,36 @@ class CholeskyInverse final : public SpdInverse {
       throw NumericalError(what + " is not positive definite (Cholesky factorization failed)");
     }
   }
-  ~CholeskyInverse() override { release(); }
+  ~CholmodInverse() override { release(); }
 
   Index size() const override { return n_; }
   void solve_in_place(Matrix& x) const override { solve(x.data(), x.cols()); }
   void solve_in_place(Vector& x) const override { solve(x.data(), 1); }
 
+  void forward_in_place(Vector& x) const override {
+    const int* perm = static_cast<const int*>(L_->Perm);
+    for (Index k = 0; k < n_; ++k) permuted_(k) = x(perm[k]);
+    solve(CHOLMOD_L, permuted_.data(), 1);  // sys L: no permutation applied
+    x = permuted_;
+  }
+
+  void backward_in_place(Vector& x) const override {
+    const int* perm = static_cast<const int*>(L_->Perm);
+    solve(CHOLMOD_Lt, x.data(), 1);
+    for (Index k = 0; k < n_; ++k) permuted_(k) = x(k);
+    for (Index k = 0; k < n_; ++k) x(perm[k]) = permuted_(k);
+  }
+
   /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4): forward
   /// substitutions only, each touching just the part of L that its sparse
   /// column of B reaches (the elimination-tree path of its nonzeros), so the
   /// cost grows with the number of columns times that path, not times n.
-  Matrix gram(const SparseMatrix& B) const override {
-    const SparseMatrix Y = forward_substitutions(B);
-    const Matrix W = Matrix(SparseMatrix(Y.transpose()) * Y);
-    return 0.5 * (W + W.transpose());  // symmetric to the last bit
-  }
+  Matrix gram(const SparseMatrix& B) const override { return inner_products(forward(B)); }
 
- private:
-  void solve(double* x, Index cols) const {
-    cholmod_dense b = dense_view(x, n_, cols);
-    if (!cholmod_solve2(CHOLMOD_A, L_, &b, nullptr, &solution_, nullptr, &work_y_, &work_e_,
-                        &common_))
-      throw NumericalError("CHOLMOD solve failed (out of memory?)");
-    const double* s = static_cast<const double*>(solution_->x);
-    std::copy(s, s + n_ * cols, x);
-  }
-
-  // Y = L^-1 P B, sparse. Sparse right-hand sides (cholmod_solve2's Bset)
-  // need a simplicial factor: a copy of L is converted, L itself stays
-  // supernodal for the fast dense solves of the time steps.
-  SparseMatrix forward_substitutions(const SparseMatrix& B) const {
+  // Sparse right-hand sides (cholmod_solve2's Bset) need a simplicial
+  // factor: a copy of L is converted, L itself stays supernodal for the fast
+  // dense solves of the time steps.
+  SparseMatrix forward(const SparseMatrix& B) const override {
     cholmod_factor* Ls = cholmod_copy_factor(L_, &common_);
     if (Ls == nullptr ||
         !cholmod_change_factor(CHOLMOD_REAL, true, false, false, false, Ls, &common_)) {
@@ -146,6 +146,16 @@ class CholeskyInverse final : public SpdInverse {
     return Y;
   }
 
+  // x <- the solution of system `sys` (CHOLMOD_A: X x = b) in place.
+  void solve(int sys, double* x, Index cols) const {
+    cholmod_dense b = dense_view(x, n_, cols);
+    if (!cholmod_solve2(sys, L_, &b, nullptr, &solution_, nullptr, &work_y_, &work_e_, &common_))
+      throw NumericalError("CHOLMOD solve failed (out of memory?)");
+    const double* s = static_cast<const double*>(solution_->x);
+    std::copy(s, s + n_ * cols, x);
+  }
+  void solve(double* x, Index cols) const { solve(CHOLMOD_A, x, cols); }
+
   void release() {
     cholmod_free_dense(&solution_, &common_);
     cholmod_free_dense(&work_y_, &common_);
@@ -160,6 +170,7 @@ class CholeskyInverse final : public SpdInverse {
   mutable cholmod_common common_;
   cholmod_factor* L_ = nullptr;
   mutable cholmod_dense *solution_ = nullptr, *work_y_ = nullptr, *work_e_ = nullptr;
+  mutable Vector permuted_;  // P x of the half solves
 };
 
 class DiagonalInverse final : public SpdInverse {
@@ -180,8 +191,14 @@ class DiagonalInverse final : public SpdInverse {
 
 }  // namespace
 
-std::unique_ptr<SpdInverse> make_cholesky_inverse(const SparseMatrix& X, const std::string& what) {
-  return std::make_unique<CholeskyInverse>(X, what);
+Matrix inner_products(const SparseMatrix& Y) {
+  const Matrix W = Matrix(SparseMatrix(Y.transpose()) * Y);
+  return 0.5 * (W + W.transpose());  // symmetric to the last bit
+}
+
+std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
+                                                       const std::string& what) {
+  return std::make_unique<CholmodInverse>(X, what);
 }
 
 std::unique_ptr<SpdInverse> make_diagonal_inverse(const Vector& d, const std::string& what) {

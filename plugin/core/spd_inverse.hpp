@@ -20,11 +20,30 @@ class SpdInverse {
   virtual Matrix gram(const SparseMatrix& B) const = 0;
 };
 
+/// X = P' L L' P (P a fill-reducing permutation): besides whole solves, the
+/// two halves of one, so that a solve constrained by a few sparse rows costs
+/// one substitution each way (ConstrainedSolver, method.md §4).
+class CholeskyInverse : public SpdInverse {
+ public:
+  /// x <- L^{-1} P x.
+  virtual void forward_in_place(Vector& x) const = 0;
+  /// x <- P' L^{-T} x.
+  virtual void backward_in_place(Vector& x) const = 0;
+  /// Y = L^{-1} P B for a sparse B, sparse: a column of Y is nonzero only
+  /// where the nonzeros of its column of B reach in the elimination tree.
+  /// Then B^T X^{-1} B = Y^T Y (gram).
+  virtual SparseMatrix forward(const SparseMatrix& B) const = 0;
+};
+
+/// Y^T Y, dense and symmetric to the last bit.
+Matrix inner_products(const SparseMatrix& Y);
+
 /// Sparse Cholesky (CHOLMOD, supernodal). Throws NumericalError naming `what`
 /// if the matrix is not positive definite. Solves reuse workspaces of the
 /// inverse (no heap allocation after the first solve of a given width), so
 /// one inverse serves one thread at a time.
-std::unique_ptr<SpdInverse> make_cholesky_inverse(const SparseMatrix& X, const std::string& what);
+std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
+                                                       const std::string& what);
 
 /// Inverse of a positive diagonal matrix (a lumped mass). Throws InputError
 /// naming `what` if an entry is not positive.

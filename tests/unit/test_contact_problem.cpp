@@ -259,6 +259,31 @@ TEST(SpdInverse, SparseGramMatchesDenseSolves) {
   EXPECT_EQ(W, W.transpose());
 }
 
+TEST(SpdInverse, CholeskyHalvesComposeTheSolve) {
+  // backward(forward(r)) = X^-1 r, and forward(B) (sparse) is the forward
+  // half applied to each column of B.
+  PlateProblem pp;
+  const auto& P = *pp.problem;
+  const nbm_test::Sparse X = P.M() + (0.25 * 1e-4) * P.K();
+  const auto inverse = nbm::make_cholesky_inverse(X, "X");
+  std::mt19937 rng(8);
+  const Vec r = nbm_test::random_vector(P.size(), rng);
+  Vec x = r, y = r;
+  inverse->solve_in_place(x);
+  inverse->forward_in_place(y);
+  const Vec y_forward = y;
+  inverse->backward_in_place(y);
+  EXPECT_LE((y - x).cwiseAbs().maxCoeff(), 1e-13 * x.cwiseAbs().maxCoeff());
+  EXPECT_NEAR(y_forward.squaredNorm(), r.dot(x), 1e-12 * r.dot(x));  // |L^-1 P r|^2 = r' X^-1 r
+  const nbm_test::Sparse& B = P.constraint_basis();
+  const Mat Y = Mat(inverse->forward(B));
+  for (Index j = 0; j < B.cols(); ++j) {
+    Vec b = Mat(B).col(j);
+    inverse->forward_in_place(b);
+    EXPECT_LE((Y.col(j) - b).cwiseAbs().maxCoeff(), 1e-13 * b.cwiseAbs().maxCoeff());
+  }
+}
+
 TEST(SpdInverse, ErrorsNameTheMatrix) {
   Mat A = Mat::Identity(3, 3);
   A(1, 1) = -1;
