@@ -6,27 +6,41 @@
 # which writes bench/RESULTS-scripts.md; the report points to it.
 #
 #   bash bench/run.sh                 P1 and P2, 1e3, 1e4 and 1e5 dofs (about 10 minutes)
-#   bash bench/run.sh "1000 10000"    other sizes (1000000 takes hours: NBM setup)
+#   bash bench/run.sh "1000 10000"    other sizes
+#   bash bench/run.sh SIZES ORDERS REPORT
+#                                     ORDERS: "1", "2" or "1 2" (default); REPORT: where
+#                                     the report goes instead of bench/RESULTS.md (its raw
+#                                     data and plot go next to it, as .csv and .png). The
+#                                     10^6-dof run of bench/million.md:
+#   bash bench/run.sh 1000000 1 out/bench/million/RESULTS.md      (about 25 minutes)
 #
 # Every benchmark runs in its own process so that its peak resident memory
 # (VmHWM) is its own. Raw results: out/bench/*.csv.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 sizes=${1:-"1000 10000 100000"}
+orders=${2:-"1 2"}
+report=${3:-"$repo/bench/RESULTS.md"}
 bash "$repo/scripts/install-deps.sh" >/dev/null
 bash "$repo/scripts/build.sh" >/dev/null
 bench="$repo/build/bench/nbm_bench"
 work="$repo/out/bench"
-mkdir -p "$work"
-raw="$work/raw.csv"
-echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps" > "$raw"
+mkdir -p "$work" "$(dirname "$report")"
+if [ "$report" = "$repo/bench/RESULTS.md" ]; then
+  raw="$work/raw.csv"
+  plot="$repo/bench/scaling.png"
+else
+  raw="${report%.md}.csv"
+  plot="${report%.md}.png"
+fi
+echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw"
 load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
 
 names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeFlight
        NbmNewmarkStepBouncing NbmMasslessStepFreeFlight NbmMasslessStepBouncing
        NbmExplicitStepFreeFlight NbmExplicitStepBouncing NbmSetup)
 for dofs in $sizes; do
-  for order in 1 2; do
+  for order in $orders; do
     for name in "${names[@]}"; do
       out="$work/$name-$order-$dofs.csv"
       "$bench" --benchmark_filter="^BM_$name/order:$order/dofs:$dofs(/|\$)" \
@@ -38,9 +52,9 @@ for dofs in $sizes; do
         /^"BM_/ {
           t = $col["real_time"]; u = $col["time_unit"]
           if (u == "ms") t *= 1000; else if (u == "ns") t /= 1000; else if (u == "s") t *= 1e6
-          printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s\n", n, o, $col["dofs"], $col["contacts"], t,
+          printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s,%.0f\n", n, o, $col["dofs"], $col["contacts"], t,
                  $col["held_MB"], ("solves_per_step" in col) ? $col["solves_per_step"] : "",
-                 ("switch_steps" in col) ? $col["switch_steps"] : ""
+                 ("switch_steps" in col) ? $col["switch_steps"] : "", $col["peak_rss_MB"]
         }' "$out" >> "$raw"
     done
     echo "bench: order $order, $dofs dofs done"
@@ -48,11 +62,10 @@ for dofs in $sizes; do
 done
 
 # Ratios per (order, dofs), exponents per benchmark, the report.
-report="$repo/bench/RESULTS.md"
 {
   echo "# Benchmark results"
   echo
-  echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
+  echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}${2:+ \"$2\"}${3:+ $3}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
   echo "($(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo),"
   echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))."
   echo "Load average when the run started: $load (on $(nproc) cores, anything above about 0.5 means the ratios"
@@ -108,9 +121,9 @@ report="$repo/bench/RESULTS.md"
   echo
   echo "## Times"
   echo
-  echo "| benchmark | order | dofs | time per step (us) | memory held (MB) | solves per step | steps with an active-set change |"
-  echo "|---|---|---|---|---|---|---|"
-  awk -F, 'NR > 1 { printf "| %s | P%s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $7, $8 }' "$raw"
+  echo "| benchmark | order | dofs | time per step (us) | memory held (MB) | peak RSS of the process (MB) | solves per step | steps with an active-set change |"
+  echo "|---|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { printf "| %s | P%s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $9, $7, $8 }' "$raw"
   echo
   echo "## Scaling: fitted exponent of time against dofs (least squares over the sizes run)"
   echo
@@ -132,12 +145,15 @@ report="$repo/bench/RESULTS.md"
 gnuplot <<GP
 set datafile separator ','
 set terminal pngcairo size 1100,700 font ',10'
-set output '$repo/bench/scaling.png'
+set output '$plot'
 set logscale xy; set grid; set key top left
 set xlabel 'dofs'; set ylabel 'time per step (us)'
 set title 'Step time against problem size (P1), bench/run.sh'
 plot for [b in "PlainNewmarkStep NbmNewmarkStepBouncing NbmNewmarkStepFreeFlight NbmMasslessStepBouncing PlainExplicitStep NbmExplicitStepBouncing"] \
   '< awk -F, -v b='.b.' "\\\$1 == b && \\\$2 == 1" $raw' using 3:5 with linespoints lw 2 title b
 GP
+if [ "$report" = "$repo/bench/RESULTS.md" ] && [ -f "$repo/bench/million.md" ]; then
+  { echo; cat "$repo/bench/million.md"; } >> "$report.tmp"  # the 10^6-dof run, kept as recorded
+fi
 mv "$report.tmp" "$report"
-echo "bench: wrote $report and bench/scaling.png"
+echo "bench: wrote $report and $plot"
