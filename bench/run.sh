@@ -15,7 +15,11 @@
 #   bash bench/run.sh 1000000 1 out/bench/million/RESULTS.md      (about 25 minutes)
 #
 # Every benchmark runs in its own process so that its peak resident memory
-# (VmHWM) is its own. Raw results: out/bench/*.csv.
+# (VmHWM) is its own. The machine's noise (other jobs, a virtualised CPU)
+# moves single runs by 10-30 %, so every size is measured in ROUNDS rounds
+# (environment, default 3), the benchmarks interleaved within a round, and
+# the report takes each benchmark's fastest round (the spread, slowest /
+# fastest, is in the raw data and the times table). Raw results: out/bench/*.csv.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 sizes=${1:-"1000 10000 100000"}
@@ -33,7 +37,8 @@ else
   raw="${report%.md}.csv"
   plot="${report%.md}.png"
 fi
-echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw"
+rounds=${ROUNDS:-3}
+echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw.rounds"
 load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
 
 names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeFlight
@@ -41,8 +46,9 @@ names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeF
        NbmExplicitStepFreeFlight NbmExplicitStepBouncing NbmSetup)
 for dofs in $sizes; do
   for order in $orders; do
+    for round in $(seq "$rounds"); do
     for name in "${names[@]}"; do
-      out="$work/$name-$order-$dofs.csv"
+      out="$work/$name-$order-$dofs-$round.csv"
       "$bench" --benchmark_filter="^BM_$name/order:$order/dofs:$dofs(/|\$)" \
         --benchmark_format=csv --benchmark_min_time=0.5 > "$out" 2>/dev/null
       # Columns of Google Benchmark's CSV: name,iterations,real_time,cpu_time,
@@ -55,11 +61,23 @@ for dofs in $sizes; do
           printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s,%.0f\n", n, o, $col["dofs"], $col["contacts"], t,
                  $col["held_MB"], ("solves_per_step" in col) ? $col["solves_per_step"] : "",
                  ("switch_steps" in col) ? $col["switch_steps"] : "", $col["peak_rss_MB"]
-        }' "$out" >> "$raw"
+        }' "$out" >> "$raw.rounds"
     done
-    echo "bench: order $order, $dofs dofs done"
+    done
+    echo "bench: order $order, $dofs dofs done ($rounds rounds)"
   done
 done
+# Per benchmark and size: the fastest round, its spread (slowest / fastest)
+# and the largest peak RSS, in the order of the rounds file.
+awk -F, -v OFS=, 'NR == 1 { print $0, "spread"; next }
+  { k = $1 FS $2 FS $3
+    if (!(k in best)) { order[++n] = k; best[k] = $0; lo[k] = hi[k] = $5 + 0; rss[k] = $9 + 0; next }
+    if ($5 + 0 < lo[k]) { lo[k] = $5 + 0; best[k] = $0 }
+    if ($5 + 0 > hi[k]) hi[k] = $5 + 0
+    if ($9 + 0 > rss[k]) rss[k] = $9 + 0 }
+  END { for (i = 1; i <= n; i++) { k = order[i]; split(best[k], f, FS); f[9] = rss[k]
+          line = f[1]; for (j = 2; j <= 9; j++) line = line OFS f[j]
+          print line, sprintf("%.2f", hi[k] / lo[k]) } }' "$raw.rounds" > "$raw"
 
 # Ratios per (order, dofs), exponents per benchmark, the report.
 {
@@ -73,8 +91,11 @@ done
   echo "Plane-strain plate (bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
   echo "implicit dt = 2e-4, bouncing runs restart every 250 steps (fall, impact, rebound); explicit"
   echo "dt = half the critical step. Times are wall-clock per step (per factorization or setup for"
-  echo "those rows); every benchmark ran in its own process; memory is what its solver objects hold"
-  echo "(heap growth after the plate was assembled, glibc mallinfo2). Raw data: out/bench/raw.csv."
+  echo "those rows), the fastest of $rounds rounds in which every benchmark ran in its own process,"
+  echo "interleaved with the others; the step rows start after one untimed first step (its time,"
+  echo "which includes the dense factorizations of the first active set, is the first_step_us"
+  echo "counter of out/bench/*.csv); memory is what the solver objects hold"
+  echo "(heap growth after the plate was assembled, glibc mallinfo2). Raw data: ${raw#"$repo"/}."
   echo
   echo "Whole FreeFem++ runs (wall time per simulated second of the bouncing plate, NBM against"
   echo "Nitsche, three mesh sizes): [RESULTS-scripts.md](RESULTS-scripts.md), by \`bash bench/script-timing.sh\`."
@@ -121,9 +142,11 @@ done
   echo
   echo "## Times"
   echo
-  echo "| benchmark | order | dofs | time per step (us) | memory held (MB) | peak RSS of the process (MB) | solves per step | steps with an active-set change |"
-  echo "|---|---|---|---|---|---|---|---|"
-  awk -F, 'NR > 1 { printf "| %s | P%s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $6, $9, $7, $8 }' "$raw"
+  echo "Fastest of $rounds rounds; spread: slowest / fastest round."
+  echo
+  echo "| benchmark | order | dofs | time per step (us) | spread | memory held (MB) | peak RSS of the process (MB) | solves per step | steps with an active-set change |"
+  echo "|---|---|---|---|---|---|---|---|---|"
+  awk -F, 'NR > 1 { printf "| %s | P%s | %s | %s | %s | %s | %s | %s | %s |\n", $1, $2, $3, $5, $10, $6, $9, $7, $8 }' "$raw"
   echo
   echo "## Scaling: fitted exponent of time against dofs (least squares over the sizes run)"
   echo

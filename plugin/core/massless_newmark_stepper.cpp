@@ -60,9 +60,9 @@ StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
     if (lcp.z(k) != 0) a -= lcp.z(k) * Y_.col(k);
   S_->backward_in_place(a);
 
-  a_ = a;
-  v_ = v_pred_ + (gamma_ * dt) * a_;
   u_ = u_hat_ + bdt2 * a;
+  a_.swap(a);  // acceleration_: a workspace again from here
+  v_ = v_pred_ + (gamma_ * dt) * a_;
   // The LCP's z is lambda: z_k = 0 (lcp.active) where contact k is open.
   for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
   // Closed contacts sit exactly on the obstacle, not only to the round-off of

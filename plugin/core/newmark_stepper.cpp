@@ -97,9 +97,9 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
   else
     fall_back(F_next, report);
 
-  a_ = a_next_;
+  a_.swap(a_next_);  // a_next_, u_next_: workspaces again from here
   v_ = v_pred_ + (gamma * dt) * a_;
-  u_ = u_next_;
+  u_.swap(u_next_);
   finish_step(F_next);
   return report;
 }

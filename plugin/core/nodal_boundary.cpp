@@ -101,10 +101,12 @@ double NodalBoundary::violation(const Vector& u, const Vector& F, const ActiveSe
   const double u_scale = std::max(u.cwiseAbs().maxCoeff(), g.cwiseAbs().maxCoeff());
   double f_scale = 0;
   for (std::size_t k = 0; k < c.size(); ++k) f_scale = std::max(f_scale, std::abs(F(c[k])));
-  Kx_.setZero();
-  for (Index j = 0; j < K_C_.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K_C_, j); it; ++it)
-      Kx_(it.row()) += std::abs(it.value()) * std::abs(u(j));
+  for (Index k = 0; k < K_C_.outerSize(); ++k) {
+    double row = 0;
+    for (decltype(K_C_)::InnerIterator it(K_C_, k); it; ++it)
+      row += std::abs(it.value()) * std::abs(u(it.col()));
+    Kx_(k) = row;
+  }
   f_scale = std::max(f_scale, Kx_.maxCoeff());
   double v = 0;
   for (std::size_t k = 0; k < c.size(); ++k) {

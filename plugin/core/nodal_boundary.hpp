@@ -53,7 +53,9 @@ class NodalBoundary {
 
  private:
   const ContactProblem& problem_;
-  SparseMatrix K_C_;  // stiffness rows of the contact dofs
+  // Stiffness rows of the contact dofs, stored by rows: a product with a
+  // dofs vector costs the rows' nonzeros, not a pass over all dofs.
+  Eigen::SparseMatrix<double, Eigen::RowMajor, int> K_C_;
   CachedLcpSolver lcp_;  // of K_CC
   mutable ActiveSetCache<Eigen::LLT<Matrix>> open_block_;  // K_In,In factors
   // Workspaces (one value per contact node), so that the methods called at

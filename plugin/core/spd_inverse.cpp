@@ -60,25 +60,39 @@ class CholmodInverse final : public CholeskyInverse {
       release();
       throw NumericalError(what + " is not positive definite (Cholesky factorization failed)");
     }
+    if (!L_->is_super) {  // forced above; the half solves below rely on it
+      release();
+      throw NumericalError(what + ": CHOLMOD returned a simplicial factor, expected supernodal");
+    }
+    supernode_work_.resize(static_cast<Index>(std::max<std::size_t>(L_->maxesize, 1)));
   }
   ~CholmodInverse() override { release(); }
 
   Index size() const override { return n_; }
   void solve_in_place(Matrix& x) const override { solve(x.data(), x.cols()); }
-  void solve_in_place(Vector& x) const override { solve(x.data(), 1); }
+  // One vector: the two halves below, which copy less than cholmod_solve2.
+  void solve_in_place(Vector& x) const override {
+    forward_in_place(x);
+    backward_in_place(x);
+  }
 
+  // The supernodal substitutions work in place on a dense column: one
+  // gather (forward) or scatter (backward) through P is the only copy, and
+  // x swaps buffers with the permuted copy (x must have the size n).
   void forward_in_place(Vector& x) const override {
+    check_size(x);
     const int* perm = static_cast<const int*>(L_->Perm);
     for (Index k = 0; k < n_; ++k) permuted_(k) = x(perm[k]);
-    solve(CHOLMOD_L, permuted_.data(), 1);  // sys L: no permutation applied
-    x = permuted_;
+    substitute(cholmod_super_lsolve, permuted_);
+    x.swap(permuted_);
   }
 
   void backward_in_place(Vector& x) const override {
+    check_size(x);
     const int* perm = static_cast<const int*>(L_->Perm);
-    solve(CHOLMOD_Lt, x.data(), 1);
-    for (Index k = 0; k < n_; ++k) permuted_(k) = x(k);
-    for (Index k = 0; k < n_; ++k) x(perm[k]) = permuted_(k);
+    substitute(cholmod_super_ltsolve, x);
+    for (Index k = 0; k < n_; ++k) permuted_(perm[k]) = x(k);
+    x.swap(permuted_);
   }
 
   /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4): forward
@@ -156,6 +170,20 @@ class CholmodInverse final : public CholeskyInverse {
   }
   void solve(double* x, Index cols) const { solve(CHOLMOD_A, x, cols); }
 
+  void check_size(const Vector& x) const {
+    if (x.size() != n_)
+      throw InputError("solve: a vector of size " + std::to_string(x.size()) + ", expected " +
+                       std::to_string(n_));
+  }
+
+  // x <- L^{-1} x or L^{-T} x (`half`: cholmod_super_lsolve or _ltsolve).
+  using Substitution = int (*)(cholmod_factor*, cholmod_dense*, cholmod_dense*, cholmod_common*);
+  void substitute(Substitution half, Vector& x) const {
+    cholmod_dense b = dense_view(x.data(), n_, 1);
+    cholmod_dense e = dense_view(supernode_work_.data(), supernode_work_.size(), 1);
+    if (!half(L_, &b, &e, &common_)) throw NumericalError("CHOLMOD substitution failed");
+  }
+
   void release() {
     cholmod_free_dense(&solution_, &common_);
     cholmod_free_dense(&work_y_, &common_);
@@ -170,7 +198,8 @@ class CholmodInverse final : public CholeskyInverse {
   mutable cholmod_common common_;
   cholmod_factor* L_ = nullptr;
   mutable cholmod_dense *solution_ = nullptr, *work_y_ = nullptr, *work_e_ = nullptr;
-  mutable Vector permuted_;  // P x of the half solves
+  mutable Vector permuted_;        // P x of the half solves
+  mutable Vector supernode_work_;  // CHOLMOD's workspace E of a supernodal substitution
 };
 
 class DiagonalInverse final : public SpdInverse {
