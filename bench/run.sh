@@ -98,7 +98,7 @@ awk -F, -v OFS=, 'NR == 1 { print $0, "spread"; next }
   echo "(heap growth after the plate was assembled, glibc mallinfo2). Raw data: ${raw#"$repo"/}."
   echo
   echo "Whole FreeFem++ runs (wall time per simulated second of the bouncing plate, NBM against"
-  echo "Nitsche, three mesh sizes): [RESULTS-scripts.md](RESULTS-scripts.md), by \`bash bench/script-timing.sh\`."
+  echo "Nitsche, four mesh sizes): [RESULTS-scripts.md](RESULTS-scripts.md), by \`bash bench/script-timing.sh -lc \"0.058 0.029 0.0145 0.00725\" -repeat 2\`."
   echo
   echo "## Ratios NBM / plain (same matrices, same factorization library, same run)"
   echo
