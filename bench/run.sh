@@ -16,7 +16,7 @@
 #
 # Every benchmark runs in its own process so that its peak resident memory
 # (VmHWM) is its own. The machine's noise (other jobs, a virtualised CPU)
-# moves single runs by 10-30 %, so every size is measured in ROUNDS rounds
+# moves single runs by 10-40 %, so every size is measured in ROUNDS rounds
 # (environment, default 3), the benchmarks interleaved within a round, and
 # the report takes each benchmark's fastest round (the spread, slowest /
 # fastest, is in the raw data and the times table). Raw results: out/bench/*.csv.
@@ -47,22 +47,22 @@ names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeF
 for dofs in $sizes; do
   for order in $orders; do
     for round in $(seq "$rounds"); do
-    for name in "${names[@]}"; do
-      out="$work/$name-$order-$dofs-$round.csv"
-      "$bench" --benchmark_filter="^BM_$name/order:$order/dofs:$dofs(/|\$)" \
-        --benchmark_format=csv --benchmark_min_time=0.5 > "$out" 2>/dev/null
-      # Columns of Google Benchmark's CSV: name,iterations,real_time,cpu_time,
-      # time_unit,...,then the counters in alphabetical order.
-      awk -F, -v n="$name" -v o="$order" '
-        /^name,/ { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
-        /^"BM_/ {
-          t = $col["real_time"]; u = $col["time_unit"]
-          if (u == "ms") t *= 1000; else if (u == "ns") t /= 1000; else if (u == "s") t *= 1e6
-          printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s,%.0f\n", n, o, $col["dofs"], $col["contacts"], t,
-                 $col["held_MB"], ("solves_per_step" in col) ? $col["solves_per_step"] : "",
-                 ("switch_steps" in col) ? $col["switch_steps"] : "", $col["peak_rss_MB"]
-        }' "$out" >> "$raw.rounds"
-    done
+      for name in "${names[@]}"; do
+        out="$work/$name-$order-$dofs-$round.csv"
+        "$bench" --benchmark_filter="^BM_$name/order:$order/dofs:$dofs(/|\$)" \
+          --benchmark_format=csv --benchmark_min_time=0.5 > "$out" 2>/dev/null
+        # Columns of Google Benchmark's CSV: name,iterations,real_time,cpu_time,
+        # time_unit,...,then the counters in alphabetical order.
+        awk -F, -v n="$name" -v o="$order" '
+          /^name,/ { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
+          /^"BM_/ {
+            t = $col["real_time"]; u = $col["time_unit"]
+            if (u == "ms") t *= 1000; else if (u == "ns") t /= 1000; else if (u == "s") t *= 1e6
+            printf "%s,%s,%d,%d,%.6g,%.2f,%s,%s,%.0f\n", n, o, $col["dofs"], $col["contacts"], t,
+                   $col["held_MB"], ("solves_per_step" in col) ? $col["solves_per_step"] : "",
+                   ("switch_steps" in col) ? $col["switch_steps"] : "", $col["peak_rss_MB"]
+          }' "$out" >> "$raw.rounds"
+      done
     done
     echo "bench: order $order, $dofs dofs done ($rounds rounds)"
   done

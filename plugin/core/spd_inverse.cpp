@@ -160,15 +160,15 @@ class CholmodInverse final : public CholeskyInverse {
     return Y;
   }
 
-  // x <- the solution of system `sys` (CHOLMOD_A: X x = b) in place.
-  void solve(int sys, double* x, Index cols) const {
+  // x <- X^{-1} x for `cols` columns in place (several right-hand sides at once).
+  void solve(double* x, Index cols) const {
     cholmod_dense b = dense_view(x, n_, cols);
-    if (!cholmod_solve2(sys, L_, &b, nullptr, &solution_, nullptr, &work_y_, &work_e_, &common_))
+    if (!cholmod_solve2(CHOLMOD_A, L_, &b, nullptr, &solution_, nullptr, &work_y_, &work_e_,
+                        &common_))
       throw NumericalError("CHOLMOD solve failed (out of memory?)");
     const double* s = static_cast<const double*>(solution_->x);
     std::copy(s, s + n_ * cols, x);
   }
-  void solve(double* x, Index cols) const { solve(CHOLMOD_A, x, cols); }
 
   void check_size(const Vector& x) const {
     if (x.size() != n_)
