@@ -61,22 +61,21 @@ CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem
   }
 }
 
-void CentralDifferenceStepper::solve_acceleration(const Vector& F) {
-  r_ = F;
+void CentralDifferenceStepper::solve_acceleration(const ContactLoad& load) {
+  r_ = load.F;
   r_.noalias() -= problem_.K() * u_;
-  solver_.solve(active_, r_, a_);
+  acceleration_constraint(load, active_, h_accel_);
+  solver_.solve(active_, r_, h_accel_, a_);
 }
 
-StepReport CentralDifferenceStepper::step(const Vector& F_next) {
-  if (!initialized_) throw InputError("step: the stepper has no initial state");
+StepReport CentralDifferenceStepper::advance(const ContactLoad& next) {
   StepReport report;
   report.active_set_iterations = 1;
   a_old_ = a_;
   u_ += dt_ * v_ + (0.5 * dt_ * dt_) * a_;
-  active_ = boundary_.enforce(u_, F_next, active_).active;
-  solve_acceleration(F_next);
+  active_ = boundary_.enforce(u_, next.F, next.obstacle.g, active_).active;
+  solve_acceleration(next);
   v_ += (0.5 * dt_) * (a_old_ + a_);
-  finish_step(F_next);
   return report;
 }
 

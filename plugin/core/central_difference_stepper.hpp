@@ -21,19 +21,20 @@ class CentralDifferenceStepper final : public Stepper {
   /// bounded by the full one's, so this is a safe bound).
   CentralDifferenceStepper(const ContactProblem& problem, double dt);
 
-  StepReport step(const Vector& F_next) override;
+  using Stepper::step;
 
   double critical_dt() const { return critical_dt_; }
 
  protected:
   const SparseMatrix& mass() const override { return lumped_; }
-  void solve_acceleration(const Vector& F) override;
+  void solve_acceleration(const ContactLoad& load) override;
+  StepReport advance(const ContactLoad& next) override;
 
  private:
   SparseMatrix lumped_;
   ConstrainedSolver solver_;  // before critical_dt_: it validates the lumped mass
   double critical_dt_;
-  Vector a_old_, r_;  // workspaces of a step
+  Vector a_old_, r_, h_accel_;  // workspaces of a step
 };
 
 }  // namespace nbm

@@ -79,7 +79,7 @@ void solve_principal(const Eigen::LLT<Matrix>& llt, const Vector& q,
 // r.active (a pointer, null if A_FF is not positive definite); F, infeasible
 // and work are workspaces.
 template <class Factor>
-void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
+void pivot(const Matrix& A, const Vector& q, LcpResult& r, std::vector<Index>& F,
            std::vector<Index>& infeasible, Vector& work, Factor factor) {
   const Index n = q.size();
   // Single pivots alone (Murty) are finite on P-matrices but may need many
@@ -107,14 +107,19 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
     if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
       throw NumericalError("LCP: the solution overflows; the data are too badly scaled");
 
-    // Round-off tolerances scale with the magnitudes of the current solution.
-    const double z_scale = r.z.cwiseAbs().maxCoeff();
-    const double tol_z = 8 * n * kEps * z_scale;
-    const double tol_w = 8 * n * kEps * (q.cwiseAbs().maxCoeff() + a_max * z_scale);
+    // Round-off tolerances per row, from the terms of w_i = q_i + (A z)_i:
+    // |q_i| + sum_j |A_ij| |z_j| (and that over A_ii for z_i). A row far from
+    // another (A_ij = 0) is not judged on the other's scale, so one huge gap
+    // or reaction does not loosen the sign checks of the rest.
     infeasible.clear();
-    for (Index i = 0; i < n; ++i)
-      if ((!r.active[i] && r.z(i) < -tol_z) || (r.active[i] && r.w(i) < -tol_w))
+    for (Index i = 0; i < n; ++i) {
+      double row = std::abs(q(i));
+      for (Index j : F) row += std::abs(A(i, j)) * std::abs(r.z(j));
+      const double tol = 8 * n * kEps * row;
+      if ((!r.active[i] && r.z(i) < -std::max(tol / A(i, i), 8 * n * kEps * std::abs(r.z(i)))) ||
+          (r.active[i] && r.w(i) < -tol))
         infeasible.push_back(i);
+    }
 
     if (infeasible.empty()) {
       // Feasible complementary basis: this is the unique solution. Remove the
@@ -151,7 +156,7 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   std::vector<Index> F, infeasible;
   Vector work(n);
   Eigen::LLT<Matrix> llt;
-  pivot(A, q, A.cwiseAbs().maxCoeff(), r, F, infeasible, work,
+  pivot(A, q, r, F, infeasible, work,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           llt.compute(principal_block(A, free));
           return llt.info() == Eigen::Success ? &llt : nullptr;
@@ -161,7 +166,6 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
 
 CachedLcpSolver::CachedLcpSolver(Matrix A) : A_(std::move(A)), rhs_(A_.rows()) {
   check_matrix(A_, A_.rows());
-  a_max_ = A_.size() > 0 ? A_.cwiseAbs().maxCoeff() : 0.0;
   free_.reserve(A_.rows());
   infeasible_.reserve(A_.rows());
   result_.active.reserve(A_.rows());
@@ -175,7 +179,7 @@ const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>
   check_data(q, guess);
   start(result_, q, guess);
   if (n == 0) return result_;
-  pivot(A_, q, a_max_, result_, free_, infeasible_, rhs_,
+  pivot(A_, q, result_, free_, infeasible_, rhs_,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           const auto& llt = principal_blocks_.get(
               result_.active, [&] { return Eigen::LLT<Matrix>(principal_block(A_, free)); });

@@ -21,22 +21,23 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
   lcp_ = std::make_unique<CachedLcpSolver>((beta * dt * dt) * inner_products(Y_));
 }
 
-void MasslessNewmarkStepper::solve_acceleration(const Vector& F) {
+void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives
   // a_O = M_OO^-1 r_O and a_C = 0, then projected onto the nodal boundary
   // relation (v_C = A v_O differentiated).
   const Index nc = problem_.n_contact();
   const SparseMatrix& E_C = problem_.constraint_basis().rightCols(nc);
   const SparseMatrix M_reg = problem_.M() + SparseMatrix(E_C * E_C.transpose());
-  Vector r = F - problem_.K() * u_;
+  Vector r = load.F - problem_.K() * u_;
   for (Index c : problem_.contact_index()) r(c) = 0.0;
   make_cholesky_inverse(M_reg, "M (interior block)")->solve_in_place(r);
   a_ = r;
-  boundary_.project(a_, active_);
+  acceleration_constraint(load, active_, h_accel_);
+  boundary_.project(a_, active_, h_accel_);
 }
 
-StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
-  if (!initialized_) throw InputError("step: the stepper has no initial state");
+StepReport MasslessNewmarkStepper::advance(const ContactLoad& next) {
+  const Vector& g = next.obstacle.g;
   const double dt = dt_, bdt2 = beta_ * dt * dt;
   u_hat_ = u_ + dt * v_ + (dt * dt * (0.5 - beta_)) * a_;
   v_pred_ = v_ + (dt * (1 - gamma_)) * a_;
@@ -47,12 +48,12 @@ StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
   // S a = F - K u_hat - E_C lambda. The LCP in lambda (header): z = lambda,
   // w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda), a_free_C = Y^T y.
   Vector& a = acceleration_;
-  a = F_next;
+  a = next.F;
   a.noalias() -= problem_.K() * u_hat_;
   S_->forward_in_place(a);  // y
   q_.resize(nc);
   for (Index k = 0; k < nc; ++k)
-    q_(k) = (problem_.gaps()(k) - u_hat_(c[k])) - bdt2 * Y_.col(k).dot(a);
+    q_(k) = (g(k) - u_hat_(c[k])) - bdt2 * Y_.col(k).dot(a);
   open_.resize(nc);
   for (Index k = 0; k < nc; ++k) open_[k] = !active_[k];  // z = lambda = 0 where open
   const LcpResult& lcp = lcp_->solve(q_, open_);
@@ -68,8 +69,7 @@ StepReport MasslessNewmarkStepper::step(const Vector& F_next) {
   // Closed contacts sit exactly on the obstacle, not only to the round-off of
   // the solves (which grows with beta dt^2 |K|).
   for (Index k = 0; k < nc; ++k)
-    if (active_[k]) u_(c[k]) = problem_.gaps()(k);
-  finish_step(F_next);
+    if (active_[k]) u_(c[k]) = g(k);
   StepReport report;
   report.active_set_iterations = 1;
   return report;

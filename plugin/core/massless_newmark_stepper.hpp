@@ -34,13 +34,16 @@ class MasslessNewmarkStepper final : public Stepper {
   MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
                          double gamma = 0.5);
 
-  StepReport step(const Vector& F_next) override;
+  using Stepper::step;
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
   /// a_O = M_OO^-1 (F - K u)_O (the contact rows carry no inertia), a_C from
   /// the nodal boundary relation.
-  void solve_acceleration(const Vector& F) override;
+  void solve_acceleration(const ContactLoad& load) override;
+  /// Only g_{n+1} enters (the contact dofs carry no inertia, so the
+  /// obstacle's rates matter only for the reported v_C, a_C).
+  StepReport advance(const ContactLoad& next) override;
 
  private:
   double beta_, gamma_;
@@ -48,7 +51,7 @@ class MasslessNewmarkStepper final : public Stepper {
   SparseMatrix Y_;                        // L^-1 P E_C
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   // Workspaces of a step (sized by the first one).
-  Vector u_hat_, v_pred_, acceleration_, q_;
+  Vector u_hat_, v_pred_, acceleration_, q_, h_accel_;
   ActiveSet open_;
 };
 

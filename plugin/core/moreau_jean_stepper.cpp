@@ -19,22 +19,38 @@ MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
   impulse_ = Vector::Zero(problem.n_contact());
 }
 
-void MoreauJeanStepper::start() {
+void MoreauJeanStepper::start(const ContactLoad& load) {
   const Vector gap = gaps();
   active_.assign(problem_.n_contact(), false);
   for (Index k = 0; k < gap.size(); ++k) active_[k] = gap(k) <= 0;
   impulse_.setZero();
-  solve_acceleration(F_);
+  solve_acceleration(load);
 }
 
-void MoreauJeanStepper::solve_acceleration(const Vector& F) {
+void MoreauJeanStepper::restore_scheme_state(const Vector& state) {
+  if (state.size() == 0) {  // a state saved without it: no impulse reported
+    impulse_.setZero();
+    return;
+  }
+  if (state.size() != problem_.n_contact())
+    throw InputError("scheme state: size " + std::to_string(state.size()) + ", expected " +
+                     std::to_string(problem_.n_contact()) +
+                     " (Moreau-Jean's last impulse, one per contact node)");
+  if (!state.allFinite() || (state.array() < 0).any())
+    throw InputError("scheme state: expected finite impulses >= 0");
+  impulse_ = state;
+}
+
+void MoreauJeanStepper::solve_acceleration(const ContactLoad& load) {
   // Reported only (the scheme is first order in velocity): M a = F - K u.
-  a_ = F - problem_.K() * u_;
+  a_ = load.F - problem_.K() * u_;
   make_cholesky_inverse(problem_.M(), "M")->solve_in_place(a_);
 }
 
-StepReport MoreauJeanStepper::step(const Vector& F_next) {
-  if (!initialized_) throw InputError("step: the stepper has no initial state");
+StepReport MoreauJeanStepper::advance(const ContactLoad& next) {
+  const Vector& F_next = next.F;
+  const Vector& g_rate = obstacle_.g_rate;            // at t_n
+  const Vector& g_rate_next = next.obstacle.g_rate;  // at t_{n+1}
   const double dt = dt_;
   const auto& c = problem_.contact_index();
   const Index nc = problem_.n_contact();
@@ -43,12 +59,12 @@ StepReport MoreauJeanStepper::step(const Vector& F_next) {
                   (0.25 * dt * dt) * (problem_.K() * v_);
   S_->solve_in_place(v_free);
 
-  // Contacts predicted closed at mid-step (the gap rate is -v_C), and
-  // Newton's law on them in the separation velocities w = -v_C.
+  // Contacts predicted closed at mid-step (the gap rate is g' - v_C), and
+  // Newton's law on them in the separation velocities w = g' - v_C.
   const Vector gap = gaps();
   std::vector<Index> closed;
   for (Index k = 0; k < nc; ++k)
-    if (gap(k) - 0.5 * dt * v_(c[k]) <= 0) closed.push_back(k);
+    if (gap(k) + 0.5 * dt * (g_rate(k) - v_(c[k])) <= 0) closed.push_back(k);
   impulse_.setZero();
   Vector v_next = v_free;
   if (!closed.empty()) {
@@ -56,8 +72,9 @@ StepReport MoreauJeanStepper::step(const Vector& F_next) {
     Matrix W(m, m);
     Vector q(m);
     for (Index a = 0; a < m; ++a) {
-      // w+ + e w = (-v_free_C + W p) + e (-v_C)
-      q(a) = -v_free(c[closed[a]]) - restitution_ * v_(c[closed[a]]);
+      // w+ + e w = (g'_{n+1} - v_free_C + W p) + e (g'_n - v_C)
+      const Index k = closed[a];
+      q(a) = (g_rate_next(k) - v_free(c[k])) + restitution_ * (g_rate(k) - v_(c[k]));
       for (Index b = 0; b < m; ++b) W(a, b) = W_CC_(closed[a], closed[b]);
     }
     const LcpResult lcp = LcpSolver::solve(W, q);
@@ -72,9 +89,7 @@ StepReport MoreauJeanStepper::step(const Vector& F_next) {
   u_ += (0.5 * dt) * (v_ + v_next);
   a_ = (v_next - v_) / dt;
   v_ = v_next;
-  F_ = F_next;
-  t_ += dt;
-  const Vector gap_next = gaps();
+  const Vector gap_next = boundary_.gaps(u_, next.obstacle.g);
   for (Index k = 0; k < nc; ++k) active_[k] = impulse_(k) > 0 || gap_next(k) <= 0;
   StepReport report;
   report.active_set_iterations = 1;

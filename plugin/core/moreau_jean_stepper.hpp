@@ -10,6 +10,7 @@
 // contacts predicted closed, gap(u) - dt/2 gap_rate <= 0, the impulses p
 // and the separation velocities w = -v_C solve the LCP of Newton's law
 //   0 <= w+ + e w  _|_  p >= 0   (e: restitution coefficient in [0, 1]),
+// w = g' - v_C the rate of the gap (the obstacle may move, method.md §8),
 // with the matrix W_CC = E_C^T (M + dt^2/4 K)^-1 E_C formed once.
 // Impenetrability holds at the velocity level only: positions may
 // penetrate by O(dt v); contacts stick after impact for e = 0.
@@ -28,17 +29,22 @@ class MoreauJeanStepper final : public Stepper {
   /// M + dt^2/4 K is not positive definite.
   MoreauJeanStepper(const ContactProblem& problem, double dt, double restitution);
 
-  StepReport step(const Vector& F_next) override;
+  using Stepper::reactions;
+  using Stepper::step;
   /// Average contact force over the last step, p/dt.
-  Vector reactions() const override { return impulse_ / dt_; }
+  void reactions(Vector& lambda) const override { lambda = impulse_ / dt_; }
+  /// The last impulse p: restored with the state, so that the reactions of
+  /// a restarted run are those of the uninterrupted one.
+  Vector scheme_state() const override { return impulse_; }
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
   /// The given state is taken as it is (no nodal boundary relation).
-  void start() override;
-  void solve_acceleration(const Vector& F) override;
-  bool exact_impenetrability() const override { return false; }
-  void restored() override { impulse_.setZero(); }
+  void start(const ContactLoad& load) override;
+  void solve_acceleration(const ContactLoad& load) override;
+  StepReport advance(const ContactLoad& next) override;
+  bool slaves_contact_dofs() const override { return false; }
+  void restore_scheme_state(const Vector& state) override;
 
  private:
   double restitution_;

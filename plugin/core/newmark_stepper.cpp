@@ -27,31 +27,37 @@ NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
           }(),
           problem.constraint_basis()) {}
 
-void NewmarkStepper::solve_acceleration(const Vector& F) {
+void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
   const ConstrainedSolver mass(make_cholesky_inverse(problem_.M(), "M"),
                                problem_.constraint_basis());
-  const Vector r = F - problem_.K() * u_;
-  mass.solve(active_, r, a_);
+  const Vector r = load.F - problem_.K() * u_;
+  acceleration_constraint(load, active_, h_accel_);
+  mass.solve(active_, r, h_accel_, a_);
 }
 
-void NewmarkStepper::solve_step(const ActiveSet& active, const Vector& F, Vector& u_next,
-                                Vector& a_next) {
+void NewmarkStepper::solve_step(const ActiveSet& active, const ContactLoad& next,
+                                Vector& u_next, Vector& a_next) {
   const double bdt2 = parameters_.beta * dt_ * dt_;
-  boundary_.displacement_constraint(active, F, h_);
+  displacement_constraint(next, active, h_);  // h
+  acceleration_constraint(next, active, h_accel_);
   u_hat_ = u_pred_;
+  h_ -= bdt2 * h_accel_;  // G u_hat, so that G (u_hat + bdt2 a) = h
   boundary_.project(u_hat_, active, h_);
   // S u = M u_hat + bdt2 F + G^T mu with u = u_hat + bdt2 a is
-  // S a = F - K u_hat + G^T mu' and, since G u_hat = h, G a = 0.
-  r_ = F;
+  // S a = F - K u_hat + G^T mu', G a = h''.
+  r_ = next.F;
   r_.noalias() -= problem_.K() * u_hat_;
-  solver_.solve(active, r_, a_next);
-  // Closed contacts: a_C = 0 and u_C = g hold exactly, not only to the
+  solver_.solve(active, r_, h_accel_, a_next);
+  u_next = u_hat_ + bdt2 * a_next;
+  // Closed contacts: a_C = g'' and u_C = g hold exactly, not only to the
   // round-off of the solve (which grows with beta dt^2 |K|).
   const auto& c = problem_.contact_index();
   for (std::size_t k = 0; k < c.size(); ++k)
-    if (active[k]) a_next(c[k]) = 0.0;
-  u_next = u_hat_ + bdt2 * a_next;
+    if (active[k]) {
+      a_next(c[k]) = next.obstacle.g_accel(k);
+      u_next(c[k]) = next.obstacle.g(k);
+    }
 }
 
 NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
@@ -59,8 +65,8 @@ NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
   return tried_[n_tried_++];
 }
 
-StepReport NewmarkStepper::step(const Vector& F_next) {
-  if (!initialized_) throw InputError("step: the stepper has no initial state");
+StepReport NewmarkStepper::advance(const ContactLoad& next) {
+  const Vector& g = next.obstacle.g;
   const double dt = dt_, beta = parameters_.beta, gamma = parameters_.gamma;
   u_pred_ = u_ + dt * v_ + (dt * dt * (0.5 - beta)) * a_;
   v_pred_ = v_ + (dt * (1 - gamma)) * a_;
@@ -74,8 +80,8 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
   bool consistent = false;
   while (true) {
     ++report.active_set_iterations;
-    solve_step(guess_, F_next, u_next_, a_next_);
-    const double violation = boundary_.violation(u_next_, F_next, guess_);
+    solve_step(guess_, next, u_next_, a_next_);
+    const double violation = boundary_.violation(u_next_, next.F, g, guess_);
     if (violation <= kConsistencyTolerance) {
       consistent = true;
       break;
@@ -86,7 +92,7 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
     tried.a_next = a_next_;
     tried.violation = violation;
     u_lcp_ = u_next_;
-    guess_ = boundary_.enforce(u_lcp_, F_next, guess_).active;
+    guess_ = boundary_.enforce(u_lcp_, next.F, g, guess_).active;
     const bool seen = std::any_of(tried_.begin(), tried_.begin() + n_tried_,
                                   [&](const Candidate& c) { return c.set == guess_; });
     if (seen || report.active_set_iterations >= parameters_.max_active_set_iterations)
@@ -95,16 +101,16 @@ StepReport NewmarkStepper::step(const Vector& F_next) {
   if (consistent)
     active_ = guess_;
   else
-    fall_back(F_next, report);
+    fall_back(next, report);
 
   a_.swap(a_next_);  // a_next_, u_next_: workspaces again from here
   v_ = v_pred_ + (gamma * dt) * a_;
   u_.swap(u_next_);
-  finish_step(F_next);
   return report;
 }
 
-void NewmarkStepper::fall_back(const Vector& F_next, StepReport& report) {
+void NewmarkStepper::fall_back(const ContactLoad& next, StepReport& report) {
+  const Vector& g = next.obstacle.g;
   // No set is consistent at t_{n+1} (§5). The dynamics use the least
   // inconsistent of the sets tried and of the LCP's set at the predictor;
   // u_C^{n+1} then comes from the LCP at u_O^{n+1}, so impenetrability stays
@@ -112,24 +118,24 @@ void NewmarkStepper::fall_back(const Vector& F_next, StepReport& report) {
   // being held for a step.)
   report.fallback = true;
   u_lcp_ = u_pred_;
-  predictor_set_ = boundary_.enforce(u_lcp_, F_next, active_).active;
+  predictor_set_ = boundary_.enforce(u_lcp_, next.F, g, active_).active;
   const auto tried_end = tried_.begin() + n_tried_;
   if (std::none_of(tried_.begin(), tried_end,
                    [&](const Candidate& c) { return c.set == predictor_set_; })) {
     ++report.active_set_iterations;
-    solve_step(predictor_set_, F_next, u_next_, a_next_);
+    solve_step(predictor_set_, next, u_next_, a_next_);
     Candidate& tried = add_candidate();
     tried.set = predictor_set_;
     tried.u_next = u_next_;
     tried.a_next = a_next_;
-    tried.violation = boundary_.violation(u_next_, F_next, predictor_set_);
+    tried.violation = boundary_.violation(u_next_, next.F, g, predictor_set_);
   }
   const Candidate& best = *std::min_element(
       tried_.begin(), tried_.begin() + n_tried_,
       [](const Candidate& a, const Candidate& b) { return a.violation < b.violation; });
   u_next_ = best.u_next;
   a_next_ = best.a_next;
-  active_ = boundary_.enforce(u_next_, F_next, best.set).active;
+  active_ = boundary_.enforce(u_next_, next.F, g, best.set).active;
 }
 
 }  // namespace nbm

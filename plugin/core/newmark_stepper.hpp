@@ -24,22 +24,25 @@ class NewmarkStepper final : public Stepper {
   /// of (0, 1/2] x [1/2, 1], NumericalError if S is not positive definite.
   NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {});
 
-  StepReport step(const Vector& F_next) override;
+  using Stepper::step;
 
   const NewmarkParameters& parameters() const { return parameters_; }
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
-  void solve_acceleration(const Vector& F) override;
+  void solve_acceleration(const ContactLoad& load) override;
+  StepReport advance(const ContactLoad& next) override;
 
  private:
   /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
-  /// S u = M u_hat + beta dt^2 F + G^T mu, G u = h, where u_hat is u_pred
-  /// with its contact part from the nodal boundary relation of that set,
-  /// solved in acceleration form (S a = F - K u_hat + G^T mu', G a = 0,
-  /// u = u_hat + beta dt^2 a): a is never formed as (u - u_hat)/(beta dt^2),
-  /// which loses every digit when beta dt^2 |a| is below the round-off of u.
-  void solve_step(const ActiveSet& active, const Vector& F, Vector& u_next, Vector& a_next);
+  /// S u = M u_hat + beta dt^2 F + G^T mu, G u = h, G a = h'' (method.md §8),
+  /// where u_hat is u_pred with its contact part from the nodal boundary
+  /// relation of that set (G u_hat = h - beta dt^2 h''), solved in
+  /// acceleration form (S a = F - K u_hat + G^T mu', u = u_hat + beta dt^2 a):
+  /// a is never formed as (u - u_hat)/(beta dt^2), which loses every digit
+  /// when beta dt^2 |a| is below the round-off of u.
+  void solve_step(const ActiveSet& active, const ContactLoad& next, Vector& u_next,
+                  Vector& a_next);
 
   /// A solve kept for the fallback, with how far its set is from being
   /// consistent (NodalBoundary::violation).
@@ -52,14 +55,14 @@ class NewmarkStepper final : public Stepper {
   /// to step, so that keeping candidates does not allocate once warm.
   Candidate& add_candidate();
   /// Step of the fallback (§5), when no active set tried was consistent.
-  void fall_back(const Vector& F_next, StepReport& report);
+  void fall_back(const ContactLoad& next, StepReport& report);
 
   NewmarkParameters parameters_;
   ConstrainedSolver solver_;
   // Workspaces of a step (sized by the first one): u_pred_, v_pred_ the
   // predictors; u_hat_, h_, r_ of solve_step; the guessed active set and the
   // solution for it; the candidates tried_[0 .. n_tried_).
-  Vector u_pred_, v_pred_, u_hat_, h_, r_, u_next_, a_next_, u_lcp_;
+  Vector u_pred_, v_pred_, u_hat_, h_, h_accel_, r_, u_next_, a_next_, u_lcp_;
   ActiveSet guess_, predictor_set_;
   std::vector<Candidate> tried_;
   std::size_t n_tried_ = 0;

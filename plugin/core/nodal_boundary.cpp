@@ -12,7 +12,6 @@ NodalBoundary::NodalBoundary(const ContactProblem& problem)
     : problem_(problem),
       K_C_(problem.constraint_basis().leftCols(problem.n_contact()).transpose()),
       lcp_(problem.K_CC()),
-      zero_(Vector::Zero(problem.n_contact())),
       q_(problem.n_contact()),
       work_(problem.n_contact()),
       Kx_(problem.n_contact()) {
@@ -24,9 +23,9 @@ NodalBoundary::NodalBoundary(const ContactProblem& problem)
   open_.reserve(problem.n_contact());
 }
 
-const LcpResult& NodalBoundary::enforce(Vector& u, const Vector& F, const ActiveSet& guess) const {
+const LcpResult& NodalBoundary::enforce(Vector& u, const Vector& F, const Vector& g,
+                                        const ActiveSet& guess) const {
   const auto& c = problem_.contact_index();
-  const Vector& g = problem_.gaps();
   // lambda = F_C - K_CO u_O - K_CC u_C and z = g - u_C give lambda = q + K_CC z
   // with q = F_C - (K u)_C + K_CC (u_C - g).
   for (std::size_t k = 0; k < c.size(); ++k) work_(k) = u(c[k]) - g(k);
@@ -36,8 +35,6 @@ const LcpResult& NodalBoundary::enforce(Vector& u, const Vector& F, const Active
   for (std::size_t k = 0; k < c.size(); ++k) u(c[k]) = g(k) - r.z(k);
   return r;
 }
-
-void NodalBoundary::project(Vector& x, const ActiveSet& active) const { project(x, active, zero_); }
 
 void NodalBoundary::project(Vector& x, const ActiveSet& active, const Vector& h) const {
   const auto& c = problem_.contact_index();
@@ -63,13 +60,6 @@ void NodalBoundary::project(Vector& x, const ActiveSet& active, const Vector& h)
   for (Index a = 0; a < m; ++a) x(c[open_[a]]) += delta(a);
 }
 
-void NodalBoundary::displacement_constraint(const ActiveSet& active, const Vector& F,
-                                            Vector& h) const {
-  const auto& c = problem_.contact_index();
-  h.resize(static_cast<Index>(c.size()));
-  for (std::size_t k = 0; k < c.size(); ++k) h(k) = active[k] ? problem_.gaps()(k) : F(c[k]);
-}
-
 Vector NodalBoundary::reactions(const Vector& u, const Vector& F) const {
   Vector lambda(problem_.n_contact());
   reactions(u, F, lambda);
@@ -82,23 +72,20 @@ void NodalBoundary::reactions(const Vector& u, const Vector& F, Vector& lambda) 
   for (std::size_t k = 0; k < c.size(); ++k) lambda(k) = F(c[k]) - lambda(k);
 }
 
-Vector NodalBoundary::gaps(const Vector& u) const {
+Vector NodalBoundary::gaps(const Vector& u, const Vector& g) const {
   const auto& c = problem_.contact_index();
-  Vector gap = problem_.gaps();
+  Vector gap = g;
   for (std::size_t k = 0; k < c.size(); ++k) gap(k) -= u(c[k]);
   return gap;
 }
 
-bool NodalBoundary::consistent(const Vector& u, const Vector& F, const ActiveSet& active) const {
-  return violation(u, F, active) <= kConsistencyTolerance;
-}
-
-double NodalBoundary::violation(const Vector& u, const Vector& F, const ActiveSet& active) const {
+double NodalBoundary::violation(const Vector& u, const Vector& F, const Vector& g,
+                                const ActiveSet& active) const {
   const auto& c = problem_.contact_index();
-  const Vector& g = problem_.gaps();
   reactions(u, F, q_);  // lambda
-  // Scales: displacements (|u|, |g|) and the forces they produce (|K_C| |u|).
-  const double u_scale = std::max(u.cwiseAbs().maxCoeff(), g.cwiseAbs().maxCoeff());
+  // Scales: displacements (|u|, and per node |g_k|) and the forces they
+  // produce (|K_C| |u|).
+  const double u_scale = u.cwiseAbs().maxCoeff();
   double f_scale = 0;
   for (std::size_t k = 0; k < c.size(); ++k) f_scale = std::max(f_scale, std::abs(F(c[k])));
   for (Index k = 0; k < K_C_.outerSize(); ++k) {
@@ -112,7 +99,7 @@ double NodalBoundary::violation(const Vector& u, const Vector& F, const ActiveSe
   for (std::size_t k = 0; k < c.size(); ++k) {
     const double gap = g(k) - u(c[k]), lambda = q_(k);
     if (active[k] && lambda < 0) v = std::max(v, -lambda / f_scale);
-    if (!active[k] && gap < 0) v = std::max(v, -gap / u_scale);
+    if (!active[k] && gap < 0) v = std::max(v, -gap / std::max(u_scale, std::abs(g(k))));
   }
   return v;
 }

@@ -11,7 +11,7 @@
 namespace nbm {
 
 /// Sign checks of the active set accept round-off of this relative size
-/// (NodalBoundary::consistent); impenetrability is then exact to 1e-12 of
+/// (NodalBoundary::violation); impenetrability is then exact to 1e-12 of
 /// the displacement scale.
 constexpr double kConsistencyTolerance = 1e-13;
 
@@ -19,37 +19,32 @@ class NodalBoundary {
  public:
   explicit NodalBoundary(const ContactProblem& problem);
 
-  /// Solves the LCP at the interior part of u under the load F and overwrites
-  /// u_C with its solution; returns the LCP result (z = gaps, w = reactions),
-  /// valid until the next call.
-  const LcpResult& enforce(Vector& u, const Vector& F, const ActiveSet& guess) const;
+  /// Solves the LCP at the interior part of u under the load F against the
+  /// obstacle at gaps g, and overwrites u_C with its solution; returns the
+  /// LCP result (z = gaps, w = reactions), valid until the next call.
+  const LcpResult& enforce(Vector& u, const Vector& F, const Vector& g,
+                           const ActiveSet& guess) const;
 
   /// Imposes G x = h for the given active set by changing x_C only:
   /// x_i = h_i on closed contacts, (K x)_i = h_i on open ones.
-  /// With h = (g, F) this is u_C = A u_O + e.
+  /// With h = (g, F_C) this is u_C = A u_O + e; with the rates of g and F_C,
+  /// v_C = A v_O + e' and a_C = A a_O + e'' (method.md §8).
   void project(Vector& x, const ActiveSet& active, const Vector& h) const;
-  /// The same with h = 0: v_C = A v_O (and a_C = A a_O).
-  void project(Vector& x, const ActiveSet& active) const;
-
-  /// Right-hand side h of G u = h for the displacement: g on closed
-  /// contacts, F_C on open ones.
-  void displacement_constraint(const ActiveSet& active, const Vector& F, Vector& h) const;
 
   /// lambda = F_C - (K u)_C (method.md §2).
   Vector reactions(const Vector& u, const Vector& F) const;
   void reactions(const Vector& u, const Vector& F, Vector& lambda) const;
   /// gap = g - u_C.
-  Vector gaps(const Vector& u) const;
+  Vector gaps(const Vector& u, const Vector& g) const;
 
-  /// True if the active set is the LCP's at u: gap >= -tol on open contacts
-  /// and lambda >= -tol on closed ones, with tolerances at round-off scale
-  /// (violation() <= 1e-13).
-  bool consistent(const Vector& u, const Vector& F, const ActiveSet& active) const;
-  /// How far the active set is from the LCP's at u: the largest penetration
-  /// of an open contact relative to the displacement scale (|u|, |g|) and the
-  /// largest tensile reaction of a closed one relative to the force scale
-  /// (|F_C|, |K_C| |u|); 0 if neither occurs.
-  double violation(const Vector& u, const Vector& F, const ActiveSet& active) const;
+  /// How far the active set is from the LCP's at u (obstacle at gaps g): the
+  /// largest penetration of an open contact relative to its own displacement
+  /// scale (the body's |u| and the node's |g_k|: a far node's large gap does
+  /// not loosen the others' check) and the largest tensile reaction of a
+  /// closed one relative to the force scale (|F_C|, |K_C| |u|); 0 if neither
+  /// occurs. The set is consistent when this is <= kConsistencyTolerance.
+  double violation(const Vector& u, const Vector& F, const Vector& g,
+                   const ActiveSet& active) const;
 
  private:
   const ContactProblem& problem_;
@@ -60,7 +55,6 @@ class NodalBoundary {
   mutable ActiveSetCache<Eigen::LLT<Matrix>> open_block_;  // K_In,In factors
   // Workspaces (one value per contact node), so that the methods called at
   // every step do not allocate: one call at a time.
-  const Vector zero_;
   mutable Vector q_, work_, Kx_;
   mutable std::vector<Index> open_;
 };

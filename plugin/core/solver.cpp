@@ -1,7 +1,9 @@
 #include "solver.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
+#include <tuple>
 
 #include "central_difference_stepper.hpp"
 #include "contact_problem.hpp"
@@ -57,6 +59,13 @@ struct Solver::Impl {
   // The user arrays as last returned: a step must start from them. a_user:
   // the acceleration in user coordinates, as acceleration() hands it out.
   std::vector<double> u_user, v_user, a_user;
+  // The obstacle and the load's rates of the next call (internal coordinates).
+  Obstacle obstacle;
+  Vector F_rate, F_accel;
+
+  ContactLoad load(const Vector& F) const {
+    return {F, obstacle, F_rate.size() ? &F_rate : nullptr, F_accel.size() ? &F_accel : nullptr};
+  }
 
   void publish(std::vector<double>& u, std::vector<double>& v) {
     const Vector uu = problem->to_user(stepper->u());
@@ -101,6 +110,7 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
   ContactSet contacts(n, to_index(contact.dofs), contact.normals,
                       Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()), fixed);
   impl_->problem = std::make_unique<ContactProblem>(Ms, Ks, std::move(contacts), fixed);
+  impl_->obstacle = Obstacle::at_rest(impl_->problem->gaps());
 
   if (options.mass == "redistributed") {
     const long n_pos = static_cast<long>(options.positions.size());
@@ -171,6 +181,36 @@ long Solver::fallbacks() const { return impl_->fallbacks; }
 const ContactProblem& Solver::problem() const { return *impl_->problem; }
 double Solver::critical_dt() const { return impl_->critical_dt; }
 
+void Solver::set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
+                          const std::vector<double>& g_accel) {
+  const long nc = n_contact();
+  Obstacle o;
+  for (const auto& [x, y, name] : {std::tuple{&g, &o.g, "gaps"}, {&g_rate, &o.g_rate, "gap rates"},
+                                   {&g_accel, &o.g_accel, "gap accelerations"}}) {
+    if (static_cast<long>(x->size()) != nc)
+      throw InputError(std::string(name) + ": size " + std::to_string(x->size()) +
+                       ", expected " + std::to_string(nc) + " (one per contact node)");
+    *y = Eigen::Map<const Vector>(x->data(), nc);
+    if (!y->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
+  }
+  impl_->obstacle = std::move(o);
+}
+
+void Solver::set_load_rates(const std::vector<double>& F_rate,
+                            const std::vector<double>& F_accel) {
+  const ContactProblem& p = *impl_->problem;
+  for (const auto& [x, y, name] : {std::tuple{&F_rate, &impl_->F_rate, "load rate"},
+                                   {&F_accel, &impl_->F_accel, "load acceleration"}}) {
+    if (x->empty()) {
+      y->resize(0);
+      continue;
+    }
+    const Vector xx = to_vector(*x, p.n_dofs(), name);
+    if (!xx.allFinite()) throw InputError(std::string(name) + ": non-finite entries");
+    *y = p.to_internal(xx);
+  }
+}
+
 void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
                         const std::vector<double>& F, double t) {
   const ContactProblem& p = *impl_->problem;
@@ -178,7 +218,8 @@ void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
   const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
   for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
     if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-  impl_->stepper->initialize(p.to_internal(uu), p.to_internal(vv), p.to_internal(FF), t);
+  const Vector F_int = p.to_internal(FF);
+  impl_->stepper->initialize(p.to_internal(uu), p.to_internal(vv), impl_->load(F_int), t);
   const Stepper& st = *impl_->stepper;  // finite data can still overflow (M^-1 F)
   if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
     throw NumericalError("initialization: the state is not finite (overflow); the data are too "
@@ -189,7 +230,7 @@ void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
 
 void Solver::restart(std::vector<double>& u, std::vector<double>& v,
                      const std::vector<double>& F, double t, const std::vector<double>& a,
-                     const std::vector<long>& active) {
+                     const std::vector<long>& active, const std::vector<double>& scheme_state) {
   const ContactProblem& p = *impl_->problem;
   const long n = p.n_dofs();
   const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
@@ -208,8 +249,11 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
                        std::to_string(active[k]) + ", expected 0 or 1");
     set[k] = active[k] == 1;
   }
+  const Vector F_int = p.to_internal(FF);
+  const Vector state = Eigen::Map<const Vector>(scheme_state.data(), scheme_state.size());
+  if (!state.allFinite()) throw InputError("scheme state: non-finite entries");
   impl_->stepper->restore(p.to_internal(uu), p.to_internal(vv), p.to_internal(aa), set,
-                          p.to_internal(FF), t);
+                          impl_->load(F_int), t, state);
   impl_->steps = impl_->fallbacks = 0;
   // u, v stay as given (fixed dofs zeroed): the internal state is their
   // image, exactly what the uninterrupted run holds after publish().
@@ -235,7 +279,8 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   if (u != impl_->u_user || v != impl_->v_user)
     throw InputError(
         "u, v: changed since the last step; to restart from a new state, initialize again");
-  const StepReport r = impl_->stepper->step(p.to_internal(FF));
+  const Vector F_int = p.to_internal(FF);
+  const StepReport r = impl_->stepper->step(impl_->load(F_int));
   const Stepper& st = *impl_->stepper;  // finite data can still overflow (beta dt^2 -> 0)
   if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
     throw NumericalError("step: the new state is not finite (overflow); dt, beta or the data "
@@ -259,9 +304,13 @@ std::vector<long> Solver::active() const {
   return {a.begin(), a.end()};
 }
 std::vector<double> Solver::acceleration() const { return impl_->a_user; }
+std::vector<double> Solver::scheme_state() const {
+  const Vector x = impl_->stepper->scheme_state();
+  return {x.data(), x.data() + x.size()};
+}
 std::vector<double> Solver::energies() const {
   const Energies e = impl_->stepper->energies();
-  return {e.kinetic, e.elastic, e.load, e.total()};
+  return {e.kinetic, e.elastic, e.load, e.total(), e.obstacle_work};
 }
 
 }  // namespace nbm

@@ -69,6 +69,20 @@ class Solver {
   /// Fixed dofs: the `fixed` option plus those detected from tgv = 1e30.
   std::vector<long> fixed_dofs() const;
 
+  /// The rigid obstacle from the next initialize(), step() or restart() on
+  /// (method.md §8): per contact node the gap along its normal (fixed at
+  /// construction) and its first and second time derivatives, at the time
+  /// that call reaches. It stays until set again; before any call, the
+  /// construction's gaps at rest. Throws InputError on wrong sizes or
+  /// non-finite entries.
+  void set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
+                    const std::vector<double>& g_accel);
+  /// First and second time derivatives of the load (size n_dofs) at the time
+  /// the next call reaches; only their contact-dof entries matter (the nodal
+  /// boundary relation of open contacts follows F_C). Empty vectors: zero
+  /// (a load constant in time on the contact dofs), the default.
+  void set_load_rates(const std::vector<double>& F_rate, const std::vector<double>& F_accel);
+
   /// Sets the state at time t. u and v (size n_dofs) are updated in place:
   /// contact parts follow the nodal boundary relation, fixed dofs are zeroed.
   void initialize(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
@@ -77,12 +91,15 @@ class Solver {
   /// v must be the arrays the previous call returned (checked).
   StepInfo step(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F);
   /// Exact restart from a state saved after initialize() or step(): u, v as
-  /// returned, t = time(), a = acceleration(), active = active(), and the
-  /// load F at time t. Nothing is recomputed, so stepping on reproduces the
-  /// uninterrupted run bit for bit. u, v are kept as given (fixed dofs
-  /// zeroed); the step and fallback counters restart from zero.
+  /// returned, t = time(), a = acceleration(), active = active(), the load F
+  /// at time t, the obstacle at time t (set_obstacle() before the call, for a
+  /// moving one) and scheme_state() (empty for the schemes without one).
+  /// Nothing is recomputed, so stepping on reproduces the uninterrupted run
+  /// bit for bit. u, v are kept as given (fixed dofs zeroed); the step and
+  /// fallback counters and the obstacle's work restart from zero.
   void restart(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
-               double t, const std::vector<double>& a, const std::vector<long>& active);
+               double t, const std::vector<double>& a, const std::vector<long>& active,
+               const std::vector<double>& scheme_state = {});
 
   bool initialized() const;
   double time() const;
@@ -98,7 +115,12 @@ class Solver {
   std::vector<double> gaps() const;       ///< g - u_n >= 0 per contact node
   std::vector<long> active() const;       ///< 1 where the contact is closed
   std::vector<double> acceleration() const;
-  /// kinetic, elastic, load potential, total.
+  /// The scheme's own part of the state (Moreau-Jean: the last impulse per
+  /// contact node; empty for the NBM schemes), for restart().
+  std::vector<double> scheme_state() const;
+  /// kinetic, elastic, load potential, total (their sum), and the work done
+  /// by a moving obstacle since the start (method.md §8): with a constant
+  /// load, total - total(start) = obstacle work, to the scheme's accuracy.
   std::vector<double> energies() const;
 
  private:

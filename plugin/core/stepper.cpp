@@ -1,5 +1,6 @@
 #include "stepper.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -12,14 +13,19 @@ namespace {
 // displacement scale, so that a body released exactly on the obstacle passes.
 constexpr double kPenetrationTolerance = 1e-12;
 
-void check_size(const Vector& x, Index n, const char* name) {
+// (const char* names: a check on every step must not allocate.)
+void check_vector(const Vector& x, Index n, const char* name, const char* expected) {
   if (x.size() != n)
     throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
-                     std::to_string(n));
+                     std::to_string(n) + " (" + expected + ")");
   if (!x.allFinite()) throw InputError(std::string(name) + ": non-finite entries");
 }
 
 }  // namespace
+
+Obstacle Obstacle::at_rest(const Vector& g) {
+  return {g, Vector::Zero(g.size()), Vector::Zero(g.size())};
+}
 
 Stepper::Stepper(const ContactProblem& problem, double dt)
     : problem_(problem), boundary_(problem), dt_(dt) {
@@ -27,51 +33,85 @@ Stepper::Stepper(const ContactProblem& problem, double dt)
     throw InputError("dt: " + std::to_string(dt) + ", expected a positive finite time step");
 }
 
-void Stepper::check_penetration(const Vector& u, const char* what) const {
-  const Vector gap = boundary_.gaps(u);
-  const double scale = std::max(u.cwiseAbs().maxCoeff(), problem_.gaps().cwiseAbs().maxCoeff());
+void Stepper::check_load(const ContactLoad& load) const {
+  const Index n = problem_.size(), nc = problem_.n_contact();
+  check_vector(load.F, n, "F", "one entry per dof");
+  check_vector(load.obstacle.g, nc, "gaps", "one per contact node");
+  check_vector(load.obstacle.g_rate, nc, "gap rates", "one per contact node");
+  check_vector(load.obstacle.g_accel, nc, "gap accelerations", "one per contact node");
+  if (load.F_rate) check_vector(*load.F_rate, n, "load rate", "one entry per dof");
+  if (load.F_accel) check_vector(*load.F_accel, n, "load acceleration", "one entry per dof");
+}
+
+void Stepper::check_penetration(const Vector& u, const Vector& g, const char* what) const {
+  // Each node against its own scale: the body's displacement and its own
+  // gap, never another node's (a far node's large gap must not loosen the
+  // check of the nodes in contact).
+  const Vector gap = boundary_.gaps(u, g);
+  const double u_scale = u.cwiseAbs().maxCoeff();
   for (Index k = 0; k < gap.size(); ++k)
-    if (gap(k) < -kPenetrationTolerance * scale)
+    if (gap(k) < -kPenetrationTolerance * std::max(u_scale, std::abs(g(k))))
       throw InputError(std::string("u: ") + what + " penetration at contact node " +
                        std::to_string(k) + " (gap " + std::to_string(gap(k)) + " < 0)");
 }
 
 void Stepper::initialize(const Vector& u, const Vector& v, const Vector& F, double t) {
+  const Obstacle rest = Obstacle::at_rest(problem_.gaps());
+  initialize(u, v, ContactLoad{F, rest}, t);
+}
+
+void Stepper::initialize(const Vector& u, const Vector& v, const ContactLoad& load, double t) {
   const Index n = problem_.size();
-  check_size(u, n, "u");
-  check_size(v, n, "v");
-  check_size(F, n, "F");
+  check_vector(u, n, "u", "one entry per dof");
+  check_vector(v, n, "v", "one entry per dof");
+  check_load(load);
   if (!std::isfinite(t)) throw InputError("t: non-finite initial time");
-  check_penetration(u, "initial");
+  if (slaves_contact_dofs()) check_penetration(u, load.obstacle.g, "initial");
   u_ = u;
   v_ = v;
-  F_ = F;
+  F_ = load.F;
+  obstacle_ = load.obstacle;
   t_ = t;
+  obstacle_work_ = 0;
   a_.resize(n);
-  start();
+  start(load);
   initialized_ = true;
 }
 
 void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
                       const Vector& F, double t) {
+  const Obstacle rest = Obstacle::at_rest(problem_.gaps());
+  restore(u, v, a, active, ContactLoad{F, rest}, t);
+}
+
+void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
+                      const ContactLoad& load, double t, const Vector& scheme_state) {
   const Index n = problem_.size();
-  check_size(u, n, "u");
-  check_size(v, n, "v");
-  check_size(a, n, "a");
-  check_size(F, n, "F");
+  check_vector(u, n, "u", "one entry per dof");
+  check_vector(v, n, "v", "one entry per dof");
+  check_vector(a, n, "a", "one entry per dof");
+  check_load(load);
   if (static_cast<Index>(active.size()) != problem_.n_contact())
     throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
                      std::to_string(problem_.n_contact()) + " (one entry per contact node)");
   if (!std::isfinite(t)) throw InputError("t: non-finite time");
-  if (exact_impenetrability()) check_penetration(u, "restored");
+  if (slaves_contact_dofs()) check_penetration(u, load.obstacle.g, "restored");
+  restore_scheme_state(scheme_state);
   u_ = u;
   v_ = v;
   a_ = a;
   active_ = active;
-  F_ = F;
+  F_ = load.F;
+  obstacle_ = load.obstacle;
   t_ = t;
-  restored();
+  obstacle_work_ = 0;
   initialized_ = true;
+}
+
+void Stepper::restore_scheme_state(const Vector& state) {
+  if (state.size() != 0)
+    throw InputError("scheme state: size " + std::to_string(state.size()) +
+                     ", expected 0 (this scheme keeps no state of its own)");
 }
 
 void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
@@ -80,17 +120,64 @@ void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
   a_ = std::move(a);
 }
 
-void Stepper::start() {
-  active_ = boundary_.enforce(u_, F_, {}).active;
-  boundary_.project(v_, active_);
-  solve_acceleration(F_);
+void Stepper::start(const ContactLoad& load) {
+  active_ = boundary_.enforce(u_, F_, obstacle_.g, {}).active;
+  rate_constraint(load, active_, h_);
+  boundary_.project(v_, active_, h_);
+  solve_acceleration(load);
 }
 
-void Stepper::finish_step(const Vector& F_next) {
-  boundary_.project(v_, active_);
-  boundary_.project(a_, active_);
-  F_ = F_next;
+StepReport Stepper::step(const ContactLoad& next) {
+  if (!initialized_) throw InputError("step: the stepper has no initial state");
+  check_load(next);
+  // The obstacle's work over the step, -dg . (lambda_n + lambda_{n+1}) / 2:
+  // only when the obstacle moves (lambda_n taken before the state changes).
+  const bool moving = next.obstacle.g != obstacle_.g;
+  if (moving) {
+    reactions(lambda_old_);
+    dg_ = next.obstacle.g - obstacle_.g;
+  }
+  const StepReport report = advance(next);
+  if (slaves_contact_dofs()) project_rates(next);
+  F_ = next.F;
+  obstacle_ = next.obstacle;
   t_ += dt_;
+  if (moving) {
+    reactions(lambda_new_);
+    obstacle_work_ -= 0.5 * (dg_.dot(lambda_old_) + dg_.dot(lambda_new_));
+  }
+  return report;
+}
+
+void Stepper::project_rates(const ContactLoad& load) {
+  rate_constraint(load, active_, h_);
+  boundary_.project(v_, active_, h_);
+  acceleration_constraint(load, active_, h_);
+  boundary_.project(a_, active_, h_);
+}
+
+void Stepper::displacement_constraint(const ContactLoad& load, const ActiveSet& active,
+                                      Vector& h) const {
+  const auto& c = problem_.contact_index();
+  h.resize(static_cast<Index>(c.size()));
+  for (std::size_t k = 0; k < c.size(); ++k)
+    h(k) = active[k] ? load.obstacle.g(k) : load.F(c[k]);
+}
+
+void Stepper::rate_constraint(const ContactLoad& load, const ActiveSet& active,
+                              Vector& h) const {
+  const auto& c = problem_.contact_index();
+  h.resize(static_cast<Index>(c.size()));
+  for (std::size_t k = 0; k < c.size(); ++k)
+    h(k) = active[k] ? load.obstacle.g_rate(k) : (load.F_rate ? (*load.F_rate)(c[k]) : 0.0);
+}
+
+void Stepper::acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
+                                      Vector& h) const {
+  const auto& c = problem_.contact_index();
+  h.resize(static_cast<Index>(c.size()));
+  for (std::size_t k = 0; k < c.size(); ++k)
+    h(k) = active[k] ? load.obstacle.g_accel(k) : (load.F_accel ? (*load.F_accel)(c[k]) : 0.0);
 }
 
 Energies Stepper::energies() const {
@@ -98,6 +185,7 @@ Energies Stepper::energies() const {
   e.kinetic = 0.5 * v_.dot(mass() * v_);
   e.elastic = 0.5 * u_.dot(problem_.K() * u_);
   e.load = -F_.dot(u_);
+  e.obstacle_work = obstacle_work_;
   return e;
 }
 

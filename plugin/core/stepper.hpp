@@ -1,6 +1,13 @@
 // Time integration of the reduced NBM equations (method.md §5). The state is
 // (u, v, a) in internal coordinates; only the interior parts are integrated,
 // the contact parts are always reconstructed from the nodal boundary relation.
+//
+// The base class runs the stepping protocol shared by every scheme (input
+// checks, the obstacle's work, the contact parts of v and a, the clock); a
+// scheme implements advance(), the update of u, a and the active set, and
+// the few hooks below. A new scheme (HHT-alpha, generalized-alpha) is one
+// subclass; state of its own that a restart needs goes through
+// scheme_state() / restore_scheme_state().
 #pragma once
 
 #include "active_set.hpp"
@@ -10,10 +17,35 @@
 namespace nbm {
 
 struct Energies {
-  double kinetic = 0;  ///< 1/2 v^T M v (v_C = A v_O)
+  double kinetic = 0;  ///< 1/2 v^T M v (v_C = A v_O + e')
   double elastic = 0;  ///< 1/2 u^T K u
   double load = 0;     ///< -F^T u, the potential of the (current) load
+  /// Work done on the body by a moving obstacle since the start,
+  /// -int lambda . g'(t) dt (trapezoidal rule over the steps; method.md §8).
+  /// With a constant load, total() - total(start) equals it (to the scheme's
+  /// accuracy; exactly for the massless boundary).
+  double obstacle_work = 0;
   double total() const { return kinetic + elastic + load; }
+};
+
+/// The rigid obstacle at one time (method.md §8): per contact node, the gap
+/// g along the node's normal (fixed at construction) and its first and
+/// second time derivatives, which the schemes need for v_C and a_C.
+struct Obstacle {
+  Vector g, g_rate, g_accel;
+  /// An obstacle at rest at gaps g.
+  static Obstacle at_rest(const Vector& g);
+};
+
+/// What drives a step, at the step's end time: the load F (internal
+/// coordinates) and the obstacle. The load's rates enter only through the
+/// contact dofs (the nodal boundary relation of open contacts, (K u)_C = F_C,
+/// moves with F_C); null means a load constant in time there.
+struct ContactLoad {
+  const Vector& F;
+  const Obstacle& obstacle;
+  const Vector* F_rate = nullptr;   ///< dF/dt
+  const Vector* F_accel = nullptr;  ///< d2F/dt2
 };
 
 struct StepReport {
@@ -28,22 +60,31 @@ class Stepper {
   Stepper(const Stepper&) = delete;
   Stepper& operator=(const Stepper&) = delete;
 
-  /// Starts at time t from displacement u and velocity v under the load F
+  /// Starts at time t from displacement u and velocity v under `load`
   /// (internal coordinates); start() completes the state (for NBM: u_C and
   /// v_C replaced by their nodal boundary values, the acceleration of the
-  /// reduced equations). Throws InputError if u penetrates the obstacle.
+  /// reduced equations). Throws InputError on wrong sizes, non-finite
+  /// entries, or if u penetrates the obstacle.
+  void initialize(const Vector& u, const Vector& v, const ContactLoad& load, double t = 0);
+  /// The same against the contact set's gaps, at rest.
   void initialize(const Vector& u, const Vector& v, const Vector& F, double t = 0);
-  /// Advances by dt under the load F at the new time.
-  virtual StepReport step(const Vector& F_next) = 0;
+  /// Advances by dt to the load and obstacle of `next` at the new time.
+  StepReport step(const ContactLoad& next);
+  /// Advances by dt under the load F at the new time, the obstacle staying
+  /// as it is (its gaps and rates unchanged).
+  StepReport step(const Vector& F_next) { return step(ContactLoad{F_next, obstacle_}); }
 
   /// Exact restart: restores a state saved after initialize() or step() --
-  /// displacement, velocity, acceleration, active set, the load F at time t --
-  /// as it is (nothing is recomputed), so that stepping on from it reproduces
-  /// the uninterrupted run bit for bit. The steppers keep nothing else between
-  /// steps that affects the results (caches of factorizations per active set
-  /// are pure memoization). Moreau-Jean's last impulse is not part of the
-  /// state: reactions() is zero until the next step. Throws InputError on wrong
-  /// sizes, non-finite entries or, for the NBM schemes, a penetrating u.
+  /// displacement, velocity, acceleration, active set, the load and obstacle
+  /// at time t, and the scheme's own state (scheme_state(); empty for the
+  /// schemes that have none) -- as it is (nothing is recomputed), so that
+  /// stepping on from it reproduces the uninterrupted run bit for bit. The
+  /// caches of factorizations per active set are pure memoization. The
+  /// obstacle's work restarts from zero. Throws InputError on wrong sizes,
+  /// non-finite entries or, for the NBM schemes, a penetrating u.
+  void restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
+               const ContactLoad& load, double t, const Vector& scheme_state = Vector());
+  /// The same against the contact set's gaps, at rest.
   void restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
                const Vector& F, double t);
   /// Overwrites u, v and a (same sizes, unchecked), keeping the rest of the
@@ -58,28 +99,51 @@ class Stepper {
   const Vector& v() const { return v_; }
   const Vector& a() const { return a_; }
   const ActiveSet& active() const { return active_; }
+  const Obstacle& obstacle() const { return obstacle_; }
   /// Contact force lambda >= 0 per contact node (for NBM, method.md §2).
-  virtual Vector reactions() const { return boundary_.reactions(u_, F_); }
-  Vector gaps() const { return boundary_.gaps(u_); }
+  Vector reactions() const {
+    Vector lambda;
+    reactions(lambda);
+    return lambda;
+  }
+  virtual void reactions(Vector& lambda) const { boundary_.reactions(u_, F_, lambda); }
+  /// g - u_n per contact node, against the current obstacle.
+  Vector gaps() const { return boundary_.gaps(u_, obstacle_.g); }
   Energies energies() const;
+  /// State of the scheme beyond (u, v, a, active set, load, obstacle) that an
+  /// exact restart needs; empty by default.
+  virtual Vector scheme_state() const { return Vector(); }
 
  protected:
   /// The mass matrix of the scheme (consistent or lumped), for energies.
   virtual const SparseMatrix& mass() const = 0;
   /// Completes the initial state; by default the NBM one: u_C from the LCP,
-  /// v_C = A v_O, then solve_acceleration.
-  virtual void start();
-  /// Solves mass() a = F - K u + G^T mu, G a = 0 for the current active set.
-  virtual void solve_acceleration(const Vector& F) = 0;
-  /// Completes a step: v_C, a_C from the new active set, time advanced.
-  void finish_step(const Vector& F_next);
-  /// False for a scheme whose positions may penetrate (Moreau-Jean): its
-  /// restored states are not checked for penetration.
-  virtual bool exact_impenetrability() const { return true; }
-  /// Called at the end of restore(): resets what is not part of the state.
-  virtual void restored() {}
-  /// Throws InputError if u penetrates the obstacle beyond round-off.
-  void check_penetration(const Vector& u, const char* what) const;
+  /// v_C = A v_O + e', then solve_acceleration.
+  virtual void start(const ContactLoad& load);
+  /// Solves mass() a = F - K u + G^T mu, G a = h'' for the current active set
+  /// and the load and obstacle of `load` (the current ones).
+  virtual void solve_acceleration(const ContactLoad& load) = 0;
+  /// The scheme's step: u_, a_ and active_ at t + dt from the state at t and
+  /// `next`; v_ is left to the scheme too. The base class then completes it.
+  virtual StepReport advance(const ContactLoad& next) = 0;
+  /// False for a scheme whose contact dofs are ordinary unknowns
+  /// (Moreau-Jean): no nodal boundary relation for its v_C, a_C, and its
+  /// positions may penetrate (restored states are not checked for it).
+  virtual bool slaves_contact_dofs() const { return true; }
+  /// Sets the scheme's own state (scheme_state()) at the end of restore();
+  /// throws InputError if it does not fit. Default: only an empty one fits.
+  virtual void restore_scheme_state(const Vector& state);
+  /// Throws InputError if u penetrates the obstacle at gaps g beyond round-off.
+  void check_penetration(const Vector& u, const Vector& g, const char* what) const;
+
+  /// Right-hand sides of G x = h (method.md §4, §8) for the displacement, the
+  /// velocity and the acceleration: g, g', g'' on closed contacts, F_C and
+  /// its rates on open ones.
+  void displacement_constraint(const ContactLoad& load, const ActiveSet& active,
+                               Vector& h) const;
+  void rate_constraint(const ContactLoad& load, const ActiveSet& active, Vector& h) const;
+  void acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
+                               Vector& h) const;
 
   const ContactProblem& problem_;
   NodalBoundary boundary_;
@@ -87,7 +151,18 @@ class Stepper {
   double t_ = 0;
   bool initialized_ = false;
   Vector u_, v_, a_, F_;
+  Obstacle obstacle_;
   ActiveSet active_;
+
+ private:
+  void check_load(const ContactLoad& load) const;
+  /// v_C, a_C from the nodal boundary relation of the new active set.
+  void project_rates(const ContactLoad& load);
+
+  double obstacle_work_ = 0;
+  // Workspaces of a step: constraint right-hand sides, the gap change and
+  // the reactions at both ends of a step of a moving obstacle.
+  Vector h_, dg_, lambda_old_, lambda_new_;
 };
 
 }  // namespace nbm

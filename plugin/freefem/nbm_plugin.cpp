@@ -8,7 +8,10 @@
 //         restitution = 0);                           // the impact-law peer
 //   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
 //   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
-//   nbmRestart(S, u, v, F, t, a, act); // exact restart from a saved state
+//   nbmObstacle(S, g, gdot, gddot);   // a moving obstacle: gaps and rates at
+//                                     // the time of the next nbmInit/nbmStep
+//   nbmLoadRates(S, Fdot, Fddot);     // a load varying on the contact dofs
+//   nbmRestart(S, u, v, F, t, a, act [, state]); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...
 //
@@ -121,11 +124,35 @@ long nbm_step(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
   return info.active_set_iterations;
 }
 
-// nbmRestart(S, u, v, F, t, a, act): the state saved after nbmInit or nbmStep
-// (u, v, nbmTime, nbmAcceleration, nbmActive), restored as it is.
-long nbm_restart(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
-                 KN<double>* const& F, const double& t, KN<double>* const& a,
-                 KN<long>* const& act) {
+// nbmObstacle(S, g, gdot, gddot): the obstacle (gaps along the contact
+// normals and their time derivatives, one per contact node) from the next
+// nbmInit, nbmStep or nbmRestart on.
+long nbm_obstacle(NbmHandle* const& h, KN<double>* const& g, KN<double>* const& g_rate,
+                  KN<double>* const& g_accel) {
+  nbm::Solver& S = solver_of(h, "nbmObstacle");
+  const std::vector<double> gg = vector_of<double>(g, "nbmObstacle", "g");
+  const std::vector<double> gr = vector_of<double>(g_rate, "nbmObstacle", "gdot");
+  const std::vector<double> ga = vector_of<double>(g_accel, "nbmObstacle", "gddot");
+  guarded("nbmObstacle", [&] { S.set_obstacle(gg, gr, ga); });
+  return 0;
+}
+
+// nbmLoadRates(S, Fdot, Fddot): time derivatives of the load at the time of
+// the next call (arrays of size 0: zero).
+long nbm_load_rates(NbmHandle* const& h, KN<double>* const& F_rate, KN<double>* const& F_accel) {
+  nbm::Solver& S = solver_of(h, "nbmLoadRates");
+  const std::vector<double> r = vector_of<double>(F_rate, "nbmLoadRates", "Fdot");
+  const std::vector<double> a = vector_of<double>(F_accel, "nbmLoadRates", "Fddot");
+  guarded("nbmLoadRates", [&] { S.set_load_rates(r, a); });
+  return 0;
+}
+
+// nbmRestart(S, u, v, F, t, a, act [, state]): the state saved after nbmInit
+// or nbmStep (u, v, nbmTime, nbmAcceleration, nbmActive, nbmSchemeState),
+// restored as it is.
+long nbm_restart_with_state(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+                            KN<double>* const& F, const double& t, KN<double>* const& a,
+                            KN<long>* const& act, KN<double>* const& state) {
   nbm::Solver& S = solver_of(h, "nbmRestart");
   check_distinct(u, v, "nbmRestart");
   std::vector<double> uu = vector_of<double>(u, "nbmRestart", "u");
@@ -133,10 +160,17 @@ long nbm_restart(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v
   const std::vector<double> FF = vector_of<double>(F, "nbmRestart", "F");
   const std::vector<double> aa = vector_of<double>(a, "nbmRestart", "a");
   const std::vector<long> active = vector_of<long>(act, "nbmRestart", "active");
-  guarded("nbmRestart", [&] { S.restart(uu, vv, FF, t, aa, active); });
+  const std::vector<double> scheme =
+      state ? vector_of<double>(state, "nbmRestart", "state") : std::vector<double>();
+  guarded("nbmRestart", [&] { S.restart(uu, vv, FF, t, aa, active, scheme); });
   assign(u, uu);
   assign(v, vv);
   return 0;
+}
+long nbm_restart(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+                 KN<double>* const& F, const double& t, KN<double>* const& a,
+                 KN<long>* const& act) {
+  return nbm_restart_with_state(h, u, v, F, t, a, act, nullptr);
 }
 
 long nbm_reactions(NbmHandle* const& h, KN<double>* const& out) {
@@ -169,6 +203,12 @@ long nbm_acceleration(NbmHandle* const& h, KN<double>* const& out) {
   assign(out, S.acceleration());
   return out->N();
 }
+long nbm_scheme_state(NbmHandle* const& h, KN<double>* const& out) {
+  nbm::Solver& S = solver_of(h, "nbmSchemeState");
+  if (!S.initialized()) fail("nbmSchemeState: call nbmInit first");
+  assign(out, S.scheme_state());
+  return out->N();
+}
 long nbm_fixed(NbmHandle* const& h, KN<long>* const& out) {
   assign(out, solver_of(h, "nbmFixedDofs").fixed_dofs());
   return out->N();
@@ -189,6 +229,11 @@ void Load_Init() {
   Global.Add("nbmStep", "(", new OneOperator4_<long, H, R, R, R>(nbm_step));
   Global.Add("nbmRestart", "(",
              new OneOperator7_<long, H, R, R, R, double, R, KN<long>*>(nbm_restart));
+  Global.Add("nbmRestart", "(",
+             new OneOperator8_<long, H, R, R, R, double, R, KN<long>*, R>(nbm_restart_with_state));
+  Global.Add("nbmObstacle", "(", new OneOperator4_<long, H, R, R, R>(nbm_obstacle));
+  Global.Add("nbmLoadRates", "(", new OneOperator3_<long, H, R, R>(nbm_load_rates));
+  Global.Add("nbmSchemeState", "(", new OneOperator2_<long, H, R>(nbm_scheme_state));
   Global.Add("nbmReactions", "(", new OneOperator2_<long, H, R>(nbm_reactions));
   Global.Add("nbmGaps", "(", new OneOperator2_<long, H, R>(nbm_gaps));
   Global.Add("nbmActive", "(", new OneOperator2_<long, H, KN<long>*>(nbm_active));
