@@ -5,6 +5,7 @@
 #include <string>
 
 #include "errors.hpp"
+#include "mass_redistribution.hpp"
 
 namespace nbm {
 namespace {
@@ -84,7 +85,8 @@ std::vector<Index> detect_tgv_dofs(const SparseMatrix& M, const SparseMatrix& K)
 }
 
 ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
-                               ContactSet contacts, std::vector<Index> fixed)
+                               ContactSet contacts, std::vector<Index> fixed,
+                               const Matrix* massless_positions)
     : n_dofs_(K.rows()), contacts_(std::move(contacts)), fixed_(std::move(fixed)) {
   std::sort(fixed_.begin(), fixed_.end());
   fixed_.erase(std::unique(fixed_.begin(), fixed_.end()), fixed_.end());
@@ -166,6 +168,7 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   }
   B_.resize(n, 2 * nc);
   B_.setFromTriplets(t.begin(), t.end());
+  if (massless_positions) make_boundary_massless(redistributed_mass(*this, M, *massless_positions));
 }
 
 Vector ContactProblem::lumped_mass() const {

@@ -18,10 +18,14 @@ class ContactProblem {
  public:
   /// M, K: symmetric, n x n (full storage). `fixed`: dofs held at zero; their
   /// rows and columns are ignored (so matrices assembled with on() are fine).
+  /// With `massless_positions` (one row per user dof: its node's
+  /// coordinates), the mass of the contact dofs is redistributed
+  /// (mass_redistribution.hpp): M_CC = 0, M_CO = 0, the massless boundary of
+  /// method.md §4. The problem does not change once built.
   /// Throws InputError naming M or K on wrong sizes, non-finite or
-  /// non-symmetric entries.
+  /// non-symmetric entries (and as redistributed_mass does).
   ContactProblem(const SparseMatrix& M, const SparseMatrix& K, ContactSet contacts,
-                 std::vector<Index> fixed);
+                 std::vector<Index> fixed, const Matrix* massless_positions = nullptr);
 
   Index n_dofs() const { return n_dofs_; }        ///< size of the user's vectors
   /// Internal index of a user dof, -1 for a fixed dof.
@@ -50,11 +54,7 @@ class ContactProblem {
   /// mass would not be diagonal).
   Vector lumped_mass() const;
 
-  /// Replaces the mass matrix by one whose rows and columns of the contact
-  /// dofs vanish (the massless boundary of method.md §4, built by
-  /// redistributed_mass()). Throws InputError if they do not vanish.
-  void make_boundary_massless(SparseMatrix M);
-  /// True after make_boundary_massless: M_CC = 0, M_CO = 0.
+  /// True for a problem built with the massless boundary: M_CC = 0, M_CO = 0.
   bool massless_boundary() const { return massless_boundary_; }
 
   /// Internal coordinates of a user vector (displacement, velocity or load).
@@ -68,6 +68,10 @@ class ContactProblem {
   bool exact_round_trip() const { return exact_round_trip_; }
 
  private:
+  /// Sets M (built by redistributed_mass()); throws InputError if its rows
+  /// and columns of the contact dofs do not vanish.
+  void make_boundary_massless(SparseMatrix M);
+
   Index n_dofs_;
   ContactSet contacts_;
   std::vector<Index> fixed_;

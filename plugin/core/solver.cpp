@@ -47,11 +47,82 @@ Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   return Eigen::Map<const Vector>(x.data(), n);
 }
 
+// Checks the options that do not depend on the matrices, once: the scheme,
+// the mass treatment and which parameters go with which.
+void check_options(const SolverOptions& options) {
+  const std::string& scheme = options.scheme;
+  if (scheme != "newmark" && scheme != "explicit" && scheme != "moreau-jean")
+    throw InputError("scheme: \"" + scheme +
+                     "\", expected \"newmark\", \"explicit\" or \"moreau-jean\"");
+  if (scheme != "newmark")
+    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
+      if (value->has_value())
+        throw InputError(std::string(name) + ": given with scheme \"" + scheme + "\"" +
+                         (scheme == "explicit"
+                              ? ", which is central differences (beta = 0, gamma = 1/2); "
+                                "Newmark parameters need scheme \"newmark\""
+                              : ", whose theta = 1/2 is fixed"));
+  if (options.restitution.has_value() && scheme != "moreau-jean")
+    throw InputError("restitution: given with scheme \"" + scheme +
+                     "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
+  if (options.mass == "redistributed") {
+    if (scheme != "newmark")
+      throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
+                       "boundary has no explicit or Moreau-Jean variant)");
+  } else if (options.mass != "consistent") {
+    throw InputError("mass: \"" + options.mass +
+                     "\", expected \"consistent\" or \"redistributed\"");
+  } else if (!options.positions.empty()) {
+    throw InputError("positions: given with mass = \"consistent\"; they are used only by "
+                     "mass = \"redistributed\"");
+  }
+}
+
+// The node coordinates of mass = "redistributed", one row per dof.
+Matrix positions_of(const SolverOptions& options, Index n) {
+  const long n_pos = static_cast<long>(options.positions.size());
+  if (n_pos == 0 || n_pos % n != 0 || n_pos / n > 3)
+    throw InputError("positions: size " + std::to_string(n_pos) +
+                     ", expected 1, 2 or 3 coordinates per dof (n_dofs = " + std::to_string(n) +
+                     ") with mass = \"redistributed\"");
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      options.positions.data(), n, n_pos / n);
+}
+
+// The time scheme of the options on a problem (options checked).
+std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const ContactProblem& problem,
+                                      double& critical_dt) {
+  critical_dt = 0;
+  const NewmarkParameters defaults;
+  const double beta = options.beta.value_or(defaults.beta);
+  const double gamma = options.gamma.value_or(defaults.gamma);
+  if (problem.massless_boundary())
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma);
+  if (options.scheme == "newmark") {
+    NewmarkParameters parameters;
+    parameters.beta = beta;
+    parameters.gamma = gamma;
+    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters);
+  }
+  if (options.scheme == "explicit") {
+    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt);
+    critical_dt = cd->critical_dt();
+    return cd;
+  }
+  return std::make_unique<MoreauJeanStepper>(problem, options.dt,
+                                             options.restitution.value_or(0.0));
+}
+
 }  // namespace
 
 struct Solver::Impl {
   SolverOptions options;
   std::vector<long> fixed;
+  // The user's matrices as given: a new contact set (replace_contacts) is
+  // built on them, so that a solver constructed with it from the same
+  // matrices restarts the run bit for bit (internal ones rotate back only to
+  // round-off).
+  SparseMatrix M_user, K_user;
   std::unique_ptr<ContactProblem> problem;
   std::unique_ptr<Stepper> stepper;
   double critical_dt = 0;
@@ -65,6 +136,49 @@ struct Solver::Impl {
 
   ContactLoad load(const Vector& F) const {
     return {F, obstacle, F_rate.size() ? &F_rate : nullptr, F_accel.size() ? &F_accel : nullptr};
+  }
+
+  /// Builds the problem and the stepper for a contact description.
+  void build(const SparseMatrix& M, const SparseMatrix& K, const ContactDescription& contact) {
+    const Index n = K.rows();
+    if (contact.gaps.empty())
+      throw InputError("contact set is empty: expected at least one contact node (gaps)");
+    const std::vector<Index> fixed_dofs(fixed.begin(), fixed.end());
+    ContactSet contacts(n, to_index(contact.dofs), contact.normals,
+                        Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()),
+                        fixed_dofs);
+    std::unique_ptr<ContactProblem> p;
+    if (options.mass == "redistributed") {
+      const Matrix X = positions_of(options, n);
+      p = std::make_unique<ContactProblem>(M, K, std::move(contacts), fixed_dofs, &X);
+    } else {
+      p = std::make_unique<ContactProblem>(M, K, std::move(contacts), fixed_dofs);
+    }
+    std::unique_ptr<Stepper> s = make_stepper(options, *p, critical_dt);
+    stepper = std::move(s);  // the old stepper refers to the old problem: first
+    problem = std::move(p);
+    obstacle = Obstacle::at_rest(problem->gaps());
+  }
+
+  /// What replace_contacts() puts back if the new description fails.
+  struct Saved {
+    std::unique_ptr<ContactProblem> problem;
+    std::unique_ptr<Stepper> stepper;
+    Obstacle obstacle;
+    double critical_dt;
+    std::vector<double> u_user, v_user, a_user;
+  };
+  Saved save() {
+    return {std::move(problem), std::move(stepper), obstacle, critical_dt, u_user, v_user, a_user};
+  }
+  void put_back(Saved& s) {
+    stepper = std::move(s.stepper);
+    problem = std::move(s.problem);
+    obstacle = std::move(s.obstacle);
+    critical_dt = s.critical_dt;
+    u_user = std::move(s.u_user);
+    v_user = std::move(s.v_user);
+    a_user = std::move(s.a_user);
   }
 
   void publish(std::vector<double>& u, std::vector<double>& v) {
@@ -84,11 +198,25 @@ struct Solver::Impl {
     v_user = v;
     a_user.assign(aa.data(), aa.data() + aa.size());
   }
+
+  /// u, v must be the arrays the last call returned.
+  void check_unchanged(const std::vector<double>& u, const std::vector<double>& v) const {
+    if (u.size() != u_user.size())
+      throw InputError("u: size " + std::to_string(u.size()) + ", expected " +
+                       std::to_string(u_user.size()) + " (resized since the last step?)");
+    if (v.size() != v_user.size())
+      throw InputError("v: size " + std::to_string(v.size()) + ", expected " +
+                       std::to_string(v_user.size()) + " (resized since the last step?)");
+    if (u != u_user || v != v_user)
+      throw InputError(
+          "u, v: changed since the last step; to restart from a new state, initialize again");
+  }
 };
 
 Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
                const SolverOptions& options)
     : impl_(std::make_unique<Impl>()) {
+  check_options(options);
   impl_->options = options;
   const SparseMatrix Ks = to_sparse(K, "K");
   const SparseMatrix Ms = to_sparse(M, "M");
@@ -96,76 +224,15 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
     throw InputError("M: size " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) +
                      " differs from the size of K, " + std::to_string(Ks.rows()) + "x" +
                      std::to_string(Ks.cols()));
-  const Index n = Ks.rows();
-  if (contact.gaps.empty())
-    throw InputError("contact set is empty: expected at least one contact node (gaps)");
-
   // Range errors of `fixed` are reported by ContactSet.
   std::vector<Index> fixed = to_index(options.fixed);
   for (Index f : detect_tgv_dofs(Ms, Ks)) fixed.push_back(f);
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
   impl_->fixed.assign(fixed.begin(), fixed.end());
-
-  ContactSet contacts(n, to_index(contact.dofs), contact.normals,
-                      Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()), fixed);
-  impl_->problem = std::make_unique<ContactProblem>(Ms, Ks, std::move(contacts), fixed);
-  impl_->obstacle = Obstacle::at_rest(impl_->problem->gaps());
-
-  if (options.mass == "redistributed") {
-    const long n_pos = static_cast<long>(options.positions.size());
-    if (n_pos == 0 || n_pos % n != 0 || n_pos / n > 3)
-      throw InputError("positions: size " + std::to_string(n_pos) +
-                       ", expected 1, 2 or 3 coordinates per dof (n_dofs = " +
-                       std::to_string(n) + ") with mass = \"redistributed\"");
-    const Matrix P = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                                                    Eigen::RowMajor>>(options.positions.data(), n,
-                                                                      n_pos / n);
-    impl_->problem->make_boundary_massless(redistributed_mass(*impl_->problem, Ms, P));
-    if (options.scheme != "newmark")
-      throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
-                       "boundary has no explicit or Moreau-Jean variant)");
-  } else if (options.mass != "consistent") {
-    throw InputError("mass: \"" + options.mass +
-                     "\", expected \"consistent\" or \"redistributed\"");
-  } else if (!options.positions.empty()) {
-    throw InputError("positions: given with mass = \"consistent\"; they are used only by "
-                     "mass = \"redistributed\"");
-  }
-
-  if (impl_->problem->massless_boundary()) {
-    NewmarkParameters parameters;
-    impl_->stepper = std::make_unique<MasslessNewmarkStepper>(
-        *impl_->problem, options.dt, options.beta.value_or(parameters.beta),
-        options.gamma.value_or(parameters.gamma));
-  } else if (options.scheme == "newmark") {
-    NewmarkParameters parameters;
-    parameters.beta = options.beta.value_or(parameters.beta);
-    parameters.gamma = options.gamma.value_or(parameters.gamma);
-    impl_->stepper = std::make_unique<NewmarkStepper>(*impl_->problem, options.dt, parameters);
-  } else if (options.scheme == "explicit") {
-    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
-      if (value->has_value())
-        throw InputError(std::string(name) +
-                         ": given with scheme \"explicit\", which is central differences "
-                         "(beta = 0, gamma = 1/2); Newmark parameters need scheme \"newmark\"");
-    auto cd = std::make_unique<CentralDifferenceStepper>(*impl_->problem, options.dt);
-    impl_->critical_dt = cd->critical_dt();
-    impl_->stepper = std::move(cd);
-  } else if (options.scheme == "moreau-jean") {
-    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
-      if (value->has_value())
-        throw InputError(std::string(name) +
-                         ": given with scheme \"moreau-jean\", whose theta = 1/2 is fixed");
-    impl_->stepper = std::make_unique<MoreauJeanStepper>(*impl_->problem, options.dt,
-                                                         options.restitution.value_or(0.0));
-  } else {
-    throw InputError("scheme: \"" + options.scheme +
-                     "\", expected \"newmark\", \"explicit\" or \"moreau-jean\"");
-  }
-  if (options.restitution.has_value() && options.scheme != "moreau-jean")
-    throw InputError("restitution: given with scheme \"" + options.scheme +
-                     "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
+  impl_->build(Ms, Ks, contact);
+  impl_->M_user = Ms;
+  impl_->K_user = Ks;
 }
 
 Solver::~Solver() = default;
@@ -270,15 +337,7 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   const ContactProblem& p = *impl_->problem;
   const Vector FF = to_vector(F, p.n_dofs(), "F");
   if (!FF.allFinite()) throw InputError("F: non-finite entries");
-  if (u.size() != impl_->u_user.size())
-    throw InputError("u: size " + std::to_string(u.size()) + ", expected " +
-                     std::to_string(impl_->u_user.size()) + " (resized since the last step?)");
-  if (v.size() != impl_->v_user.size())
-    throw InputError("v: size " + std::to_string(v.size()) + ", expected " +
-                     std::to_string(impl_->v_user.size()) + " (resized since the last step?)");
-  if (u != impl_->u_user || v != impl_->v_user)
-    throw InputError(
-        "u, v: changed since the last step; to restart from a new state, initialize again");
+  impl_->check_unchanged(u, v);
   const Vector F_int = p.to_internal(FF);
   const StepReport r = impl_->stepper->step(impl_->load(F_int));
   const Stepper& st = *impl_->stepper;  // finite data can still overflow (beta dt^2 -> 0)
@@ -289,6 +348,29 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   if (r.fallback) ++impl_->fallbacks;
   impl_->publish(u, v);
   return {r.active_set_iterations, r.fallback};
+}
+
+void Solver::replace_contacts(const ContactDescription& contact, std::vector<double>& u,
+                              std::vector<double>& v, const std::vector<double>& F) {
+  if (!initialized()) throw InputError("replace contacts: no state yet; call the initialization first");
+  impl_->check_unchanged(u, v);
+  const Vector FF = to_vector(F, n_dofs(), "F");
+  if (!FF.allFinite()) throw InputError("F: non-finite entries");
+  const double t = time();
+  const long steps = impl_->steps, fallbacks = impl_->fallbacks;
+  Impl::Saved saved = impl_->save();  // kept until the new description has worked
+  std::vector<double> uu = u, vv = v;
+  try {
+    impl_->build(impl_->M_user, impl_->K_user, contact);
+    initialize(uu, vv, F, t);
+  } catch (...) {
+    impl_->put_back(saved);
+    throw;
+  }
+  u = std::move(uu);
+  v = std::move(vv);
+  impl_->steps = steps;
+  impl_->fallbacks = fallbacks;
 }
 
 std::vector<double> Solver::reactions() const {

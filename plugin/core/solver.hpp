@@ -101,6 +101,21 @@ class Solver {
                double t, const std::vector<double>& a, const std::vector<long>& active,
                const std::vector<double>& scheme_state = {});
 
+  /// Re-linearisation (method.md §8): replaces the contact description --
+  /// nodes, normals, gaps, e.g. the obstacle linearised anew at the current
+  /// configuration -- keeping the state, at the cost of one setup (the
+  /// factorizations are rebuilt). u, v must be the arrays the last call
+  /// returned; they come back with the contact parts of the new contact dofs
+  /// from the new nodal boundary relation (u_O, v_O unchanged), and the
+  /// acceleration is that of the new relation; F is the load at the current
+  /// time. The obstacle becomes the new gaps at rest (set_obstacle() after
+  /// this call for a moving one, before the next step). The obstacle's work
+  /// restarts from zero; the step and fallback counters go on. Throws as the
+  /// constructor does on a bad description, and InputError if the state
+  /// penetrates the new obstacle.
+  void replace_contacts(const ContactDescription& contact, std::vector<double>& u,
+                        std::vector<double>& v, const std::vector<double>& F);
+
   bool initialized() const;
   double time() const;
   long steps() const;

@@ -42,13 +42,10 @@ struct GapBar {
     nbm::SparseMatrix M, K;
     assemble(M, K);
     nbm::ContactSet contact(N + 1, {N}, {1.0}, nbm::Vector::Constant(1, g), {0});
-    auto p = std::make_unique<nbm::ContactProblem>(M, K, contact, std::vector<Eigen::Index>{0});
-    if (massless) {
-      nbm::Matrix x(N + 1, 1);
-      for (int i = 0; i <= N; ++i) x(i, 0) = i * h();
-      p->make_boundary_massless(nbm::redistributed_mass(*p, M, x));
-    }
-    return p;
+    nbm::Matrix x(N + 1, 1);
+    for (int i = 0; i <= N; ++i) x(i, 0) = i * h();
+    return std::make_unique<nbm::ContactProblem>(M, K, contact, std::vector<Eigen::Index>{0},
+                                                 massless ? &x : nullptr);
   }
 
   nbm::ReducedField field() const {

@@ -264,4 +264,115 @@ TEST(RestartSolver, RestartValidatesItsArguments) {
   EXPECT_EQ(s.steps(), 0);
 }
 
+// ------------------------------------------------ replaced contact sets
+
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b) {
+  const Vec x = nbm_test::to_eigen(a), y = nbm_test::to_eigen(b);
+  return (x - y).cwiseAbs().maxCoeff() / std::max(x.cwiseAbs().maxCoeff(), 1e-300);
+}
+
+TEST(ReplaceContacts, TheSameDescriptionKeepsTheRun) {
+  // Axis normals (exact round trip): u_O, v_O are kept bit for bit; the
+  // acceleration is recomputed from the equations of motion, which Newmark's
+  // own a satisfies to round-off: the run goes on to round-off.
+  for (const std::string scheme : {"newmark", "explicit", "moreau-jean", "redistributed"}) {
+    SCOPED_TRACE(scheme);
+    const SolverRun r = scheme == "redistributed" ? plate_run(0.0, "redistributed")
+                                                  : plate_run(0.0, "consistent", scheme);
+    nbm::Solver a(r.M, r.K, r.contact, r.options), b(r.M, r.K, r.contact, r.options);
+    std::vector<double> ua = r.u0, va(ua.size(), 0.0), ub = ua, vb = va;
+    a.initialize(ua, va, r.F);
+    b.initialize(ub, vb, r.F);
+    for (int n = 0; n < 90; ++n) {
+      a.step(ua, va, r.F);
+      b.step(ub, vb, r.F);
+    }
+    const std::vector<double> u_before = ub, v_before = vb;
+    b.replace_contacts(r.contact, ub, vb, r.F);
+    EXPECT_EQ(ub, u_before);
+    EXPECT_EQ(vb, v_before);
+    EXPECT_EQ(b.time(), a.time());
+    EXPECT_EQ(b.steps(), a.steps());
+    if (scheme != "moreau-jean") {  // whose a is (v+ - v)/dt, not the equations' a
+      EXPECT_LE(relative_difference(b.acceleration(), a.acceleration()), 1e-9);
+    }
+    for (int n = 0; n < 100; ++n) {
+      a.step(ua, va, r.F);
+      b.step(ub, vb, r.F);
+    }
+    EXPECT_LE(relative_difference(ua, ub), 1e-9);
+    EXPECT_LE(relative_difference(va, vb), 1e-7);
+  }
+}
+
+TEST(ReplaceContacts, ARestartAcrossTheReplacementReproducesTheRunBitForBit) {
+  // The inclined plate in contact; its contact set is replaced by one without
+  // its last node and with gaps grown by 1e-3 (as a re-linearisation would
+  // move them). A new solver built on the new description and restarted from
+  // the state after the replacement continues the run bit for bit.
+  for (const std::string mass : {"consistent", "redistributed"}) {
+    SCOPED_TRACE(mass);
+    const SolverRun r = plate_run(0.3, mass);
+    nbm::ContactDescription replaced = r.contact;
+    replaced.dofs.resize(replaced.dofs.size() - 2);
+    replaced.normals.resize(replaced.normals.size() - 2);
+    replaced.gaps.pop_back();
+    for (double& g : replaced.gaps) g += 1e-3;
+    nbm::Solver a(r.M, r.K, r.contact, r.options);
+    std::vector<double> u = r.u0, v(u.size(), 0.0);
+    a.initialize(u, v, r.F);
+    for (int n = 0; n < 90; ++n) a.step(u, v, r.F);
+    a.replace_contacts(replaced, u, v, r.F);
+    EXPECT_EQ(a.n_contact(), static_cast<long>(replaced.gaps.size()));
+    for (int n = 0; n < 20; ++n) a.step(u, v, r.F);
+
+    std::vector<double> us = u, vs = v;
+    nbm::Solver b(r.M, r.K, replaced, r.options);
+    b.restart(us, vs, r.F, a.time(), a.acceleration(), a.active());
+    int closed = 0;
+    for (int n = 0; n < 150; ++n) {
+      a.step(u, v, r.F);
+      b.step(us, vs, r.F);
+      ASSERT_EQ(u, us) << "u differs after " << n + 1 << " steps";
+      ASSERT_EQ(v, vs) << "v differs after " << n + 1 << " steps";
+      ASSERT_EQ(a.active(), b.active());
+      ASSERT_EQ(a.reactions(), b.reactions());
+      for (long c : a.active()) closed += c;
+    }
+    EXPECT_GT(closed, 0);
+  }
+}
+
+TEST(ReplaceContacts, ABadDescriptionIsRejectedAndTheSolverIsUnchanged) {
+  const SolverRun r = plate_run(0.3);
+  nbm::Solver a(r.M, r.K, r.contact, r.options), b(r.M, r.K, r.contact, r.options);
+  std::vector<double> ua = r.u0, va(ua.size(), 0.0), ub = ua, vb = va;
+  using nbm::InputError;
+  expect_throw_with<InputError>([&] { b.replace_contacts(r.contact, ub, vb, r.F); },
+                                {"replace contacts", "initialization"});
+  a.initialize(ua, va, r.F);
+  b.initialize(ub, vb, r.F);
+  for (int n = 0; n < 90; ++n) {
+    a.step(ua, va, r.F);
+    b.step(ub, vb, r.F);
+  }
+  nbm::ContactDescription bad = r.contact;
+  bad.normals[2] = 2.0;
+  expect_throw_with<InputError>([&] { b.replace_contacts(bad, ub, vb, r.F); },
+                                {"normals", "unit vector"});
+  bad = r.contact;
+  for (double& g : bad.gaps) g = -0.5;  // the body would be inside the obstacle
+  expect_throw_with<InputError>([&] { b.replace_contacts(bad, ub, vb, r.F); },
+                                {"penetration"});
+  std::vector<double> moved = ub;
+  moved[0] += 1e-3;
+  expect_throw_with<InputError>([&] { b.replace_contacts(r.contact, moved, vb, r.F); },
+                                {"changed since the last step"});
+  for (int n = 0; n < 100; ++n) {
+    a.step(ua, va, r.F);
+    b.step(ub, vb, r.F);
+    ASSERT_EQ(ua, ub) << "the failed replacements changed the run (step " << n + 1 << ")";
+  }
+}
+
 }  // namespace

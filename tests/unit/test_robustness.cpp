@@ -36,9 +36,7 @@ void set_scheme(Simulation& s, Scheme scheme, double dt, const Eigen::MatrixXd& 
   switch (scheme) {
     case Scheme::Newmark: s.newmark(dt, parameters); break;
     case Scheme::Massless:
-      s.problem->make_boundary_massless(nbm::redistributed_mass(*s.problem, s.a.M, positions));
-      s.stepper = std::make_unique<nbm::MasslessNewmarkStepper>(*s.problem, dt, parameters.beta,
-                                                                parameters.gamma);
+      s.massless(dt, positions, parameters.beta, parameters.gamma);
       break;
     case Scheme::Explicit: s.explicit_scheme(dt); break;
   }

@@ -33,11 +33,15 @@ struct Simulation {
   void newmark(double dt, nbm::NewmarkParameters p = {}) {
     stepper = std::make_unique<nbm::NewmarkStepper>(*problem, dt, p);
   }
-  /// Massless boundary: redistributes the mass (positions: one row per user
-  /// dof, its node's coordinates), then the LCP-per-step Newmark scheme.
-  void massless(double dt, const Eigen::MatrixXd& positions) {
-    problem->make_boundary_massless(nbm::redistributed_mass(*problem, a.M, positions));
-    stepper = std::make_unique<nbm::MasslessNewmarkStepper>(*problem, dt);
+  /// Massless boundary: the problem rebuilt with the redistributed mass
+  /// (positions: one row per user dof, its node's coordinates), then the
+  /// LCP-per-step Newmark scheme.
+  void massless(double dt, const Eigen::MatrixXd& positions, double beta = 0.25,
+                double gamma = 0.5) {
+    stepper.reset();  // it refers to the problem
+    problem = std::make_unique<nbm::ContactProblem>(a.M, a.K, problem->contacts(),
+                                                    problem->fixed(), &positions);
+    stepper = std::make_unique<nbm::MasslessNewmarkStepper>(*problem, dt, beta, gamma);
   }
   void moreau_jean(double dt, double restitution) {
     stepper = std::make_unique<nbm::MoreauJeanStepper>(*problem, dt, restitution);
