@@ -27,6 +27,7 @@
 # rebuilt. Timings are never asserted (not a ctest test).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+. "$repo/scripts/lib.sh"
 lcs="0.058 0.029 0.0145" dt=6.25e-5 T=0.2 repeat=3 build=1 out="$repo/out/script-timing"
 args="$*"
 while [ $# -gt 0 ]; do
@@ -95,12 +96,11 @@ for lc in $lcs; do
   for m in "${methods[@]}"; do
     name="$m-$lc-T$T"
     line=$(grep '^bouncing-plate:' "$name.log" | tail -n 1)
-    key() { echo "$line" | grep -o " $1=[^ ]*" | cut -d= -f2; }
     nodes=$(awk 'f { print; exit } /^\$Nodes/ { f = 1 }' "$name.msh")
     csteps=$(awk -F, 'NR > 1 && $7 > 0 { c++ } END { print c + 0 }' "$name.csv")
-    awk -F, -v m="$m" -v lc="$lc" -v T="$T" -v tri="$(key triangles)" -v dofs=$((2 * nodes)) \
-        -v cn="$(key contactNodes)" -v steps="$(key steps)" -v cs="$csteps" \
-        -v nit="$(key newtonIterations)" -v ref="$(key refactorizations)" '
+    awk -F, -v m="$m" -v lc="$lc" -v T="$T" -v tri="$(summary_value "$line" triangles)" -v dofs=$((2 * nodes)) \
+        -v cn="$(summary_value "$line" contactNodes)" -v steps="$(summary_value "$line" steps)" -v cs="$csteps" \
+        -v nit="$(summary_value "$line" newtonIterations)" -v ref="$(summary_value "$line" refactorizations)" '
       NR > 1 && $2 == m && $3 == lc {
         if ($4 + 0 == 0) { if (f == "" || $5 < f) f = $5 } else { if (w == "" || $5 < w) w = $5 }
       }

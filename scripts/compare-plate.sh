@@ -23,6 +23,7 @@
 # README's table and figures).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+. "$repo/scripts/lib.sh"
 lc=0.058 dt=2.5e-4 T=1 out="$repo/out/compare-plate" docs=0
 args="$*"
 extra=()
@@ -68,7 +69,7 @@ ref_lc=$(awk -v a="$lc" 'BEGIN { print a / 4 }')
 ref_dt=$(awk -v a="$dt" 'BEGIN { print a / 4 }')
 lc=$ref_lc dt=$ref_dt run reference bouncing-plate.edp -mass redistributed
 
-mgh0=$(grep -o 'mgh0=[^ ]*' nbm.log | tail -n 1 | cut -d= -f2)
+mgh0=$(summary_value "$(cat nbm.log)" mgh0)
 # The first bounce: until the first lift-off of the reference plus its fall time.
 tw=$(awk -v h0=0.1 -v g=10 'BEGIN { printf "%.4g", 2.5 * sqrt(2 * h0 / g) }')
 echo "method,label,max_penetration,energy_drift_final,energy_drift_max,contact_intervals_per_node_per_impact_mean,contact_intervals_per_node_per_impact_max,impacts,l2_distance_y_com,l2_distance_u_probe,l2_distance_y_com_first_bounce,l2_distance_u_probe_first_bounce,walltime_per_simulated_second" > table.csv
@@ -79,7 +80,7 @@ for i in "${!methods[@]}"; do
 done
 
 {
-  echo "Bouncing plate, P1, lc = $lc (about $(grep -o 'triangles=[^ ]*' nbm.log | cut -d= -f2) triangles), dt = $dt, T = $T."
+  echo "Bouncing plate, P1, lc = $lc (about $(summary_value "$(cat nbm.log)" triangles) triangles), dt = $dt, T = $T."
   echo "Produced by \`bash scripts/compare-plate.sh $args\`; reference: NBM with the massless boundary, lc = $ref_lc, dt = $ref_dt."
   echo "Energy drift relative to m g h0 = $mgh0; chattering: contact intervals per node per impact (1 = no chattering)."
   echo

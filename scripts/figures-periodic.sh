@@ -9,11 +9,11 @@
 # Needs a build (scripts/build.sh); intermediate files go to out/figures.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+. "$repo/scripts/lib.sh"
 work="$repo/out/figures"
 mkdir -p "$work" "$repo/docs"
 cd "$work"
 run() { bash "$repo/scripts/freefem.sh" "$repo/edp/cantilever-plate-periodic.edp" "$@" | tail -n 1; }
-value() { printf '%s\n' "$1" | grep -o "\b$2=[^ ]*" | tail -n 1 | cut -d= -f2; }
 
 md="$repo/docs/cantilever-periodic.md"
 {
@@ -25,7 +25,7 @@ md="$repo/docs/cantilever-periodic.md"
 } > "$md"
 row() {  # row <mass label> <H> <output line>
   local o=$3
-  echo "| $1 | $2 | $(value "$o" Tshooting) | $(value "$o" Thb) | $(value "$o" periodDifference) | $(value "$o" periodicity) | $(value "$o" complementarity) | $(value "$o" switches) | $(awk -v a="$(value "$o" contactTime)" -v b="$(value "$o" Tshooting)" 'BEGIN { printf "%.3f", a / b }') | $(value "$o" maxMultiplier) | $(value "$o" driftExact) | $(value "$o" driftNewmark) |" >> "$md"
+  echo "| $1 | $2 | $(summary_value "$o" Tshooting) | $(summary_value "$o" Thb) | $(summary_value "$o" periodDifference) | $(summary_value "$o" periodicity) | $(summary_value "$o" complementarity) | $(summary_value "$o" switches) | $(awk -v a="$(summary_value "$o" contactTime)" -v b="$(summary_value "$o" Tshooting)" 'BEGIN { printf "%.3f", a / b }') | $(summary_value "$o" maxMultiplier) | $(summary_value "$o" driftExact) | $(summary_value "$o" driftNewmark) |" >> "$md"
 }
 for H in 20 40 80 160; do
   out=$(run -harmonics $H -out cantilever-H$H)

@@ -6,11 +6,11 @@
 # Needs a build (scripts/build.sh); intermediate files go to out/figures.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+. "$repo/scripts/lib.sh"
 work="$repo/out/figures"
 mkdir -p "$work" "$repo/docs"
 cd "$work"
 run() { bash "$repo/scripts/freefem.sh" "$repo/edp/bouncing-bar.edp" "$@"; }
-value() { printf '%s\n' "$1" | grep -o "\b$2=[^ ]*" | tail -n 1 | cut -d= -f2; }
 
 table="$repo/docs/bouncing-bar-convergence.md"
 {
@@ -24,10 +24,10 @@ for order in 1 2; do
   prev_e="" prev_n=""
   for N in 40 80 160 320; do
     out=$(run -order $order -N $N -out "bar-P$order-N$N")
-    e=$(value "$out" errL2u0)
+    e=$(summary_value "$out" errL2u0)
     rate="-"
     [ -n "$prev_e" ] && rate=$(awk -v a="$prev_e" -v b="$e" -v m="$prev_n" -v n="$N" 'BEGIN { printf "%.2f", log(a / b) / log(n / m) }')
-    echo "| P$order | $N | $(value "$out" dt) | $e | $rate | $(value "$out" errL2L2u) | $(value "$out" maxPenetration) | $(value "$out" fallbacks) |" >> "$table"
+    echo "| P$order | $N | $(summary_value "$out" dt) | $e | $rate | $(summary_value "$out" errL2L2u) | $(summary_value "$out" maxPenetration) | $(summary_value "$out" fallbacks) |" >> "$table"
     prev_e=$e prev_n=$N
   done
 done

@@ -2,12 +2,26 @@
 // as NBM contact problems in internal coordinates.
 #pragma once
 
+#include <cctype>
 #include <cmath>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "reduced_field.hpp"
 
 namespace nbm_test {
+
+/// A parameter value as part of a test name (letters, digits, '_' only):
+/// 0.5 -> "0p5", 1e4 -> "10000", -2 -> "m2".
+inline std::string name_word(double x) {
+  std::ostringstream s;
+  s << x;
+  std::string w = s.str();
+  for (char& c : w)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = c == '.' ? 'p' : c == '-' ? 'm' : '_';
+  return w;
+}
 
 /// Mass m on a spring k to the ground (interior dof 0), contact node of mass
 /// m_B joined to it by a spring k_c (contact dof 1), obstacle at u_1 <= g.

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "continuation.hpp"
 #include "errors.hpp"
@@ -19,6 +20,14 @@ struct FamilyCase {
   double kc, mB;
   bool half;
 };
+
+// Readable, stable test names and printed values (gtest would otherwise print
+// the raw bytes of the parameter): "kc10_mB0p5_full".
+std::string case_name(const FamilyCase& c) {
+  using nbm_test::name_word;
+  return "kc" + name_word(c.kc) + "_mB" + name_word(c.mB) + (c.half ? "_half" : "_full");
+}
+void PrintTo(const FamilyCase& c, std::ostream* os) { *os << case_name(c); }
 
 class ContinuationOnOscillator : public ::testing::TestWithParam<FamilyCase> {};
 
@@ -68,7 +77,10 @@ TEST_P(ContinuationOnOscillator, FollowsTheClosedFormFamilyThroughGrazing) {
 
 INSTANTIATE_TEST_SUITE_P(ClosedForms, ContinuationOnOscillator,
                          ::testing::Values(FamilyCase{1, 0, false}, FamilyCase{10, 0, true},
-                                           FamilyCase{10, 0.5, false}, FamilyCase{100, 0.2, true}));
+                                           FamilyCase{10, 0.5, false}, FamilyCase{100, 0.2, true}),
+                         [](const ::testing::TestParamInfo<FamilyCase>& info) {
+                           return case_name(info.param);
+                         });
 
 TEST(Continuation, RejectsBadSteps) {
   const auto field = ImpactOscillator{}.field();

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "oscillators.hpp"
 #include "shooting.hpp"
@@ -25,6 +26,14 @@ TEST(ImpactOscillatorPeriod, ClosedFormReproducesTheReferenceValues) {
 struct OscillatorCase {
   double kc, mB, A;
 };
+
+// Readable, stable test names and printed values (gtest would otherwise print
+// the raw bytes of the parameter): "kc10_mB0p5_A3".
+std::string case_name(const OscillatorCase& c) {
+  using nbm_test::name_word;
+  return "kc" + name_word(c.kc) + "_mB" + name_word(c.mB) + "_A" + name_word(c.A);
+}
+void PrintTo(const OscillatorCase& c, std::ostream* os) { *os << case_name(c); }
 
 class ShootingOnOscillator : public ::testing::TestWithParam<OscillatorCase> {};
 
@@ -52,6 +61,7 @@ INSTANTIATE_TEST_SUITE_P(
     ClosedForms, ShootingOnOscillator,
     ::testing::Values(OscillatorCase{1, 0, 3}, OscillatorCase{10, 0, 3}, OscillatorCase{1e4, 0, 3},
                       OscillatorCase{1, 0.5, 3}, OscillatorCase{3, 0.2, 1.5},
-                      OscillatorCase{1, 0, 0.8}));
+                      OscillatorCase{1, 0, 0.8}),
+    [](const ::testing::TestParamInfo<OscillatorCase>& info) { return case_name(info.param); });
 
 }  // namespace

@@ -8,6 +8,7 @@
 # the observed rates and the least-squares rate.
 set -u
 build=$1 repo=$2 script=$3 keys=$4 max_final=$5 Ns=$6
+. "$repo/scripts/lib.sh"
 shift 6
 run="$(dirname "$0")/run-freefem.sh"
 table=$(mktemp)
@@ -22,7 +23,7 @@ for N in $Ns; do
   printf '%s\n' "$out" | grep -E "^[a-z-]+:" | sed "s/^/  N=$N  /"
   row="$N"
   for key in ${keys//,/ }; do
-    e=$(printf '%s\n' "$out" | grep -o "\b$key=[^ ]*" | tail -n 1 | cut -d= -f2)
+    e=$(summary_value "$out" "$key")
     if [ -z "$e" ]; then echo "FAIL: no $key in the output"; exit 1; fi
     row="$row $e"
   done

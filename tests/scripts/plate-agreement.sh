@@ -16,6 +16,7 @@
 # fails, e.g. "0.05 0.1" -dt 1e-4 -T 0.35.
 set -eu
 build=$1 repo=$2 levels=$3
+. "$repo/scripts/lib.sh"
 shift 3
 peer=${PEER:-bouncing-plate-nitsche.edp}
 peerArgs=${PEER_ARGS--theta 1}
@@ -51,7 +52,7 @@ for lc in $levels; do
   echo "$nbmLine"
   echo "$peerLine"
   echo "  (lc = $lc: $((SECONDS - start)) s)"
-  triangles=$(printf '%s\n' "$peerLine" | tr ' ' '\n' | sed -n 's/^triangles=//p')
+  triangles=$(summary_value "$peerLine" triangles)
   awk -F, -v lc="$lc" -v nt="$triangles" '
     FNR == 1 { next }
     NR == FNR { t[FNR] = $1; y[FNR] = $2; u[FNR] = $4; na = FNR; next }

@@ -8,10 +8,10 @@
 #   plate-energy.sh <build> <repo> [bouncing-plate.edp args...]
 set -eu
 build=$1 repo=$2
+. "$repo/scripts/lib.sh"
 shift 2
 run() { bash "$repo/tests/scripts/run-freefem.sh" "$build" "$repo" "$repo/edp/bouncing-plate.edp" \
           -T 1 -vtkFrames 0 -snapshots 0 "$@" | grep '^bouncing-plate:'; }
-value() { printf '%s\n' "$1" | tr ' ' '\n' | sed -n "s/^$2=//p"; }
 drift() {  # largest |E(t) - E(0)| / mgh0 of a CSV
   awk -F, -v m="$2" 'NR == 2 { e0 = $11 } NR > 1 { d = $11 - e0; if (d < 0) d = -d; if (d > x) x = d }
                      END { printf "%.6g", x / m }' "$1"
@@ -19,7 +19,7 @@ drift() {  # largest |E(t) - E(0)| / mgh0 of a CSV
 table=""
 for dt in 1e-3 5e-4 2.5e-4; do
   line=$(run -mass redistributed -dt $dt -out energy-massless-$dt "$@")
-  mgh0=$(value "$line" mgh0)
+  mgh0=$(summary_value "$line" mgh0)
   table="$table$dt $(drift energy-massless-$dt.csv "$mgh0")
 "
 done
@@ -33,7 +33,7 @@ printf '%s' "$table" | awk '
     if (!(d[NR] < 0.005)) { print "FAIL: energy error " d[NR] " >= 0.5% at the default dt"; exit 1 }
   }'
 line=$(run -mass consistent -out energy-consistent "$@")
-mgh0=$(value "$line" mgh0)
+mgh0=$(summary_value "$line" mgh0)
 awk -F, -v m="$mgh0" '
   NR == 1 { next }
   { if (NR == 2) e0 = $11; if ($7 > 0 && !c) impacts++; c = ($7 > 0); e = $11 }

@@ -8,6 +8,7 @@
 #   plate-peer-run.sh <build> <repo> <script.edp> [script args...]
 set -eu
 build=$1 repo=$2 script=$3
+. "$repo/scripts/lib.sh"
 shift 3
 tag=peer-$(printf '%s' "$(basename "$script" .edp)$*" | tr -c 'A-Za-z0-9.-' '_')
 rm -f "$tag.csv" "$tag.png" "$tag-snapshots.png" "$tag.pvd" "$tag"-*.vtu
@@ -23,8 +24,8 @@ echo "($((SECONDS - start)) s)"
 for f in "$tag.csv" "$tag.png" "$tag-snapshots.png" "$tag.pvd" "$tag-0.vtu"; do
   [ -s "$f" ] || { echo "FAIL: $f missing or empty"; exit 1; }
 done
-pen=$(printf '%s\n' "$line" | tr ' ' '\n' | sed -n 's/^maxPenetration=//p')
-newton=$(printf '%s\n' "$line" | tr ' ' '\n' | sed -n 's/^newtonIterations=//p')
+pen=$(summary_value "$line" maxPenetration)
+newton=$(summary_value "$line" newtonIterations)
 awk -F, -v pen="$pen" -v newton="$newton" '
   function finite(s) { return s ~ /^-?[0-9]+(\.[0-9]*)?([eE][-+]?[0-9]+)?$/ }
   NR == 1 { next }

@@ -7,6 +7,9 @@
 set -u
 build=$1 repo=$2 script=$3
 shift 3
-export FF_LOADPATH="$build/plugin;/usr/lib/freefem++;/usr/lib/x86_64-linux-gnu/freefem++"
+# FreeFEM's stock plugins: /usr/lib/freefem++ on Debian, or the multiarch
+# folder /usr/lib/<triplet>/freefem++ of this machine on other layouts.
+multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch 2>/dev/null)
+export FF_LOADPATH="$build/plugin;/usr/lib/freefem++${multiarch:+;/usr/lib/$multiarch/freefem++}"
 export FF_INCLUDEPATH="$repo/edp;$repo/tests/scripts;/usr/include/freefem++/idp"
 exec FreeFem++ -nw -ne -v 0 "$script" -geodir "$repo/geo" "$@"

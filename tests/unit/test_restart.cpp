@@ -72,6 +72,10 @@ bool same(const Vec& a, const Vec& b) {
   return a.size() == b.size() && (a.array() == b.array()).all();
 }
 
+// gtest prints a parameter's raw bytes (here a std::string's pointer) unless
+// told otherwise, and ctest's test names include that text.
+void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
+
 class Restart : public ::testing::TestWithParam<Case> {};
 
 TEST_P(Restart, RestoredStepperContinuesTheRunBitForBit) {

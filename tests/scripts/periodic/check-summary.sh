@@ -7,6 +7,7 @@
 # fails, a key is missing or the script fails.
 set -u
 build=$1 repo=$2 checks=$3 script=$4
+. "$repo/scripts/lib.sh"
 shift 4
 out=$(bash "$repo/tests/scripts/run-freefem.sh" "$build" "$repo" "$script" "$@" 2>&1)
 status=$?
@@ -17,19 +18,20 @@ if [ $status -ne 0 ] || [ -z "$line" ]; then
   exit 1
 fi
 echo "$line"
-awk -v line="$line" -v checks="$checks" 'BEGIN {
-  n = split(line, kv, " ")
-  for (i = 2; i <= n; ++i) { split(kv[i], p, "="); value[p[1]] = p[2]; seen[p[1]] = 1 }
-  m = split(checks, c, " ")
-  bad = 0
-  for (i = 1; i <= m; ++i) {
-    if (match(c[i], /<=|>=/) == 0) { print "FAIL: malformed check " c[i]; bad = 1; continue }
-    key = substr(c[i], 1, RSTART - 1); op = substr(c[i], RSTART, 2); bound = substr(c[i], RSTART + 2) + 0
-    if (!(key in seen)) { print "FAIL: " key " missing"; bad = 1; continue }
-    v = value[key] + 0
-    ok = (op == "<=") ? (v <= bound) : (v >= bound)
-    printf "%s: %s = %.6g %s %.6g\n", ok ? "ok" : "FAIL", key, v, op, bound
-    if (!ok) bad = 1
-  }
-  exit bad
-}'
+bad=0
+for check in $checks; do
+  if ! [[ $check =~ ^([^<>]*)(<=|>=)(.*)$ ]]; then
+    echo "FAIL: malformed check $check"; bad=1; continue
+  fi
+  key=${BASH_REMATCH[1]} op=${BASH_REMATCH[2]} bound=${BASH_REMATCH[3]}
+  value=$(summary_value "$line" "$key")
+  if [ -z "$value" ]; then
+    echo "FAIL: $key missing"; bad=1; continue
+  fi
+  awk -v key="$key" -v v="$value" -v op="$op" -v b="$bound" 'BEGIN {
+    v += 0; b += 0; ok = (op == "<=") ? (v <= b) : (v >= b)
+    printf "%s: %s = %.6g %s %.6g\n", ok ? "ok" : "FAIL", key, v, op, b
+    exit !ok
+  }' || bad=1
+done
+exit $bad
