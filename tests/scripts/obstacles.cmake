@@ -51,3 +51,40 @@ foreach(variant
   list(POP_FRONT variant name)
   nbm_script_test(obstacle-drop-3d-${name} ${EDP}/drop-3d.edp ${variant} -vtkFrames 0 -plot 0 -out obstacle-drop-3d-${name})
 endforeach()
+
+# Bad input of the obstacle helpers (tests/scripts/bad-input/obstacles.edp):
+# each misuse stops with a message naming the argument (no ';' in the
+# regexes: they would split the list) (the helpers print it,
+# then assert: an ExecError); `valid` runs every helper correctly.
+set(NBM_BAD_OBST ${CMAKE_CURRENT_SOURCE_DIR}/bad-input/obstacles.edp)
+add_test(NAME bad-input.obstacles-valid
+  COMMAND bash ${NBM_RUN_FREEFEM} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${NBM_BAD_OBST} -case valid
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(bad-input.obstacles-valid PROPERTIES TIMEOUT 300 LABELS bad-input)
+foreach(case
+    [=[plane-normal-zero;nbmContactPlane: the plane normal \(0, 0\) is zero or not finite]=]
+    [=[plane-normal-nan;nbmContactPlane: the plane normal \(-?nan, 1\) is zero or not finite]=]
+    [=[plane3-normal-zero;nbmContactPlane3: the plane normal nu \(0, 0, 0\) is zero or not finite, expected a non-zero vector]=]
+    [=[label-empty;nbmContactPlane: label 7 has no node in this space]=]
+    [=[label-empty-3d;nbmContactPlane3: label 9 has no node in this space]=]
+    [=[reach-negative;nbmContactPlane: nbmReach = -1, expected a distance >= 0]=]
+    [=[reach-leaves-none;nbmContactCircle: no node of label 1 within nbmReach = 0\.01 of the obstacle]=]
+    [=[circle-radius-zero;nbmContactCircle: R = 0, expected a positive finite radius]=]
+    [=[circle-radius-negative;nbmContactCircle: R = -2, expected a positive finite radius]=]
+    [=[circle-side;nbmContactCircle: side = "below", expected "outside" \(the body is outside the obstacle\) or "inside"]=]
+    [=[circle-centre-on-a-node;nbmContactCircle: the obstacle's distance at the node \(0\.5, 0\.1\) is .* expected a finite value and a finite non-zero gradient]=]
+    [=[sphere-radius-nan;nbmContactSphere: R = -?nan, expected a positive finite radius]=]
+    [=[sphere-side;nbmContactSphere: side = "Outside", expected "outside"]=]
+    [=[cylinder-axis-zero;nbmContactCylinder: the axis a \(0, 0, 0\) is zero or not finite]=]
+    [=[cylinder-axis-through-a-node;nbmContactCylinder: the obstacle's distance at the node \([0-9.]+, 0\.5, 0\.1\) is 2 with gradient \(-?0, -?0, -?0\)]=]
+    [=[cylinder-radius;nbmContactCylinder: R = -1, expected a positive finite radius]=]
+    [=[phi-constant;nbmContactPhi: the obstacle's distance at the node \([0-9.e-]+, [0-9.e-]+\) is 1 with gradient \(0, 0\). expected a finite value and a finite non-zero gradient]=]
+    [=[phi-nan;nbmContactPhi: the obstacle's distance at the node .* is -?nan]=]
+    [=[phi3-constant;nbmContactPhi3: the obstacle's distance at the node .* with gradient \(0, 0, 0\)]=]
+    [=[distance-side;nbmDistanceCircle: side = "out", expected "outside"]=]
+    [=[distance-radius;nbmDistanceSphere: R = 0, expected a positive finite radius]=]
+    [=[distance-plane-normal;nbmDistancePlane: the plane normal nu \(0, 0, 0\) is zero]=]
+    [=[moving-plane-nan;nbmMovingPlane: w, w', w'' = 0, -?nan, 0, expected finite values]=])
+  list(POP_FRONT case name)
+  nbm_bad_input_test(obstacles-${name} "${case}" ${NBM_BAD_OBST} -case ${name})
+endforeach()
