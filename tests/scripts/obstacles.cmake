@@ -88,3 +88,11 @@ foreach(case
   list(POP_FRONT case name)
   nbm_bad_input_test(obstacles-${name} "${case}" ${NBM_BAD_OBST} -case ${name})
 endforeach()
+
+# The same disc checks with the plane given as a script signed distance
+# (nbmContactPhiGrad, nbmDistancePhi) and with the contact nodes narrowed by
+# nbmReach (8 of the 29 nodes; the helper reports the 21 it leaves out).
+nbm_script_test(obstacle-disc-slope-phi-P2 ${EDP}/disc-slope.edp -phi 1 -order 2 -T 0.5 -vtkFrames 0 -plot 0
+  -out obstacle-disc-slope-phi-P2)
+nbm_script_test(obstacle-disc-slope-reach-redistributed ${EDP}/disc-slope.edp -reach 0.15 -mass redistributed
+  -T 0.5 -vtkFrames 0 -plot 0 -out obstacle-disc-slope-reach-redistributed)
