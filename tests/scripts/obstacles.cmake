@@ -41,13 +41,20 @@ endforeach()
 # 3D: the gmsh block (geo/block.geo) on planes inclined at 20 and 35 degrees
 # about y, and on flat ground: the same two checks as the disc (tangential
 # acceleration g sin(a) to 1e-10 relative, geometric penetration <= 1e-12 of
-# the displacement scale, every step); the block must touch the plane.
+# the displacement scale, every step); the block must touch the plane. On a
+# rigid cylinder (axis along y) and a sphere, body outside: no geometric
+# penetration and every closed contact at sqrt(R^2 + |u_t|^2) - R, u_t
+# orthogonal to the node's normal (and to the cylinder's axis).
 foreach(variant
     "20-P1;-angle;20"
     "20-P1-redistributed;-angle;20;-mass;redistributed"
     "35-P2;-angle;35;-order;2"
     "35-P2-redistributed;-angle;35;-order;2;-mass;redistributed"
-    "flat-P1;-angle;0")
+    "flat-P1;-angle;0"
+    "cylinder-P1;-obstacle;cylinder;-offset;0.2"
+    "cylinder-P2-redistributed;-obstacle;cylinder;-order;2;-mass;redistributed"
+    "sphere-P1;-obstacle;sphere;-offset;0.1"
+    "sphere-P2;-obstacle;sphere;-order;2;-offset;0")
   list(POP_FRONT variant name)
   nbm_script_test(obstacle-drop-3d-${name} ${EDP}/drop-3d.edp ${variant} -vtkFrames 0 -plot 0 -out obstacle-drop-3d-${name})
 endforeach()
