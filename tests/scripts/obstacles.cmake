@@ -1,0 +1,105 @@
+# Rigid obstacles (method.md §8; included from tests/scripts/CMakeLists.txt):
+# the helpers of edp/nbm.idp against closed forms, and NBM runs whose checks
+# come from mechanics, not from earlier runs of the code.
+
+# Normals, gaps, dof pairing, reach, true distances and moving-obstacle arrays
+# against closed forms (2D and 3D).
+nbm_script_test(obstacle-helpers ${CMAKE_CURRENT_SOURCE_DIR}/obstacle-helpers.edp)
+
+# geo/disc.geo on frictionless planes at 30 and 15 degrees (and flat ground):
+# at every step the tangential acceleration of the centre of mass is g sin(a)
+# to 1e-10 relative (the contact forces are normal to the plane) and the
+# geometric penetration of the deformed contact nodes is <= 1e-12 of the
+# displacement scale (the script exits 1 otherwise). P1, P2, both masses.
+foreach(angle 30 15 0)
+  foreach(order 1 2)
+    foreach(mass consistent redistributed)
+      nbm_script_test(obstacle-disc-slope-${angle}-P${order}-${mass} ${EDP}/disc-slope.edp
+        -angle ${angle} -order ${order} -mass ${mass} -T 0.5 -vtkFrames 0 -plot 0
+        -out obstacle-disc-slope-${angle}-P${order}-${mass})
+    endforeach()
+  endforeach()
+endforeach()
+
+# Rigid circles (nbmContactCircle): the plate on a cylinder, centred and
+# off-centre, and the disc inside a circular casing. At every step, with u_t
+# the displacement of node k orthogonal to its normal: outside (convex), the
+# true distance is >= 0 and a closed contact sits at sqrt(R^2 + |u_t|^2) - R
+# (<= |u_t|^2/(2R)); inside, the distance is >= R - sqrt(R^2 + |u_t|^2)
+# (>= -|u_t|^2/(2R)); 1e-12 of the displacement scale for round-off. The body
+# must touch the obstacle.
+foreach(variant
+    "plate-cylinder-P1;-offset;0"
+    "plate-cylinder-off-P2;-offset;0.2;-order;2;-T;0.6"
+    "plate-cylinder-redistributed;-offset;0.1;-mass;redistributed;-T;0.6"
+    "disc-casing-P1;-geo;disc.geo;-side;inside;-Rc;0.8"
+    "disc-casing-P2-redistributed;-geo;disc.geo;-side;inside;-Rc;0.8;-order;2;-mass;redistributed")
+  list(POP_FRONT variant name)
+  nbm_script_test(obstacle-${name} ${EDP}/plate-cylinder.edp ${variant} -vtkFrames 0 -plot 0 -out obstacle-${name})
+endforeach()
+
+# 3D: the gmsh block (geo/block.geo) on planes inclined at 20 and 35 degrees
+# about y, and on flat ground: the same two checks as the disc (tangential
+# acceleration g sin(a) to 1e-10 relative, geometric penetration <= 1e-12 of
+# the displacement scale, every step); the block must touch the plane. On a
+# rigid cylinder (axis along y) and a sphere, body outside: no geometric
+# penetration and every closed contact at sqrt(R^2 + |u_t|^2) - R, u_t
+# orthogonal to the node's normal (and to the cylinder's axis).
+foreach(variant
+    "20-P1;-angle;20"
+    "20-P1-redistributed;-angle;20;-mass;redistributed"
+    "35-P2;-angle;35;-order;2"
+    "35-P2-redistributed;-angle;35;-order;2;-mass;redistributed"
+    "flat-P1;-angle;0"
+    "cylinder-P1;-obstacle;cylinder;-offset;0.2"
+    "cylinder-P2-redistributed;-obstacle;cylinder;-order;2;-mass;redistributed"
+    "sphere-P1;-obstacle;sphere;-offset;0.1"
+    "sphere-P2;-obstacle;sphere;-order;2;-offset;0")
+  list(POP_FRONT variant name)
+  nbm_script_test(obstacle-drop-3d-${name} ${EDP}/drop-3d.edp ${variant} -vtkFrames 0 -plot 0 -out obstacle-drop-3d-${name})
+endforeach()
+
+# Bad input of the obstacle helpers (tests/scripts/bad-input/obstacles.edp):
+# each misuse stops with a message naming the argument (no ';' in the
+# regexes: they would split the list) (the helpers print it,
+# then assert: an ExecError); `valid` runs every helper correctly.
+set(NBM_BAD_OBST ${CMAKE_CURRENT_SOURCE_DIR}/bad-input/obstacles.edp)
+add_test(NAME bad-input.obstacles-valid
+  COMMAND bash ${NBM_RUN_FREEFEM} ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${NBM_BAD_OBST} -case valid
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(bad-input.obstacles-valid PROPERTIES TIMEOUT 300 LABELS bad-input)
+foreach(case
+    [=[plane-normal-zero;nbmContactPlane: the plane normal \(0, 0\) is zero or not finite]=]
+    [=[plane-normal-nan;nbmContactPlane: the plane normal \(-?nan, 1\) is zero or not finite]=]
+    [=[plane3-normal-zero;nbmContactPlane3: the plane normal nu \(0, 0, 0\) is zero or not finite, expected a non-zero vector]=]
+    [=[label-empty;nbmContactPlane: label 7 has no node in this space]=]
+    [=[label-empty-3d;nbmContactPlane3: label 9 has no node in this space]=]
+    [=[reach-negative;nbmContactPlane: nbmReach = -1, expected a distance >= 0]=]
+    [=[reach-leaves-none;nbmContactCircle: no node of label 1 within nbmReach = 0\.01 of the obstacle]=]
+    [=[circle-radius-zero;nbmContactCircle: R = 0, expected a positive finite radius]=]
+    [=[circle-radius-negative;nbmContactCircle: R = -2, expected a positive finite radius]=]
+    [=[circle-side;nbmContactCircle: side = "below", expected "outside" \(the body is outside the obstacle\) or "inside"]=]
+    [=[circle-centre-on-a-node;nbmContactCircle: the obstacle's distance at the node \(0\.5, 0\.1\) is .* expected a finite value and a finite non-zero gradient]=]
+    [=[sphere-radius-nan;nbmContactSphere: R = -?nan, expected a positive finite radius]=]
+    [=[sphere-side;nbmContactSphere: side = "Outside", expected "outside"]=]
+    [=[cylinder-axis-zero;nbmContactCylinder: the axis a \(0, 0, 0\) is zero or not finite]=]
+    [=[cylinder-axis-through-a-node;nbmContactCylinder: the obstacle's distance at the node \([0-9.]+, 0\.5, 0\.1\) is 2 with gradient \(-?0, -?0, -?0\)]=]
+    [=[cylinder-radius;nbmContactCylinder: R = -1, expected a positive finite radius]=]
+    [=[phi-constant;nbmContactPhi: the obstacle's distance at the node \([0-9.e-]+, [0-9.e-]+\) is 1 with gradient \(0, 0\). expected a finite value and a finite non-zero gradient]=]
+    [=[phi-nan;nbmContactPhi: the obstacle's distance at the node .* is -?nan]=]
+    [=[phi3-constant;nbmContactPhi3: the obstacle's distance at the node .* with gradient \(0, 0, 0\)]=]
+    [=[distance-side;nbmDistanceCircle: side = "out", expected "outside"]=]
+    [=[distance-radius;nbmDistanceSphere: R = 0, expected a positive finite radius]=]
+    [=[distance-plane-normal;nbmDistancePlane: the plane normal nu \(0, 0, 0\) is zero]=]
+    [=[moving-plane-nan;nbmMovingPlane: w, w', w'' = 0, -?nan, 0, expected finite values]=])
+  list(POP_FRONT case name)
+  nbm_bad_input_test(obstacles-${name} "${case}" ${NBM_BAD_OBST} -case ${name})
+endforeach()
+
+# The same disc checks with the plane given as a script signed distance
+# (nbmContactPhiGrad, nbmDistancePhi) and with the contact nodes narrowed by
+# nbmReach (8 of the 29 nodes; the helper reports the 21 it leaves out).
+nbm_script_test(obstacle-disc-slope-phi-P2 ${EDP}/disc-slope.edp -phi 1 -order 2 -T 0.5 -vtkFrames 0 -plot 0
+  -out obstacle-disc-slope-phi-P2)
+nbm_script_test(obstacle-disc-slope-reach-redistributed ${EDP}/disc-slope.edp -reach 0.15 -mass redistributed
+  -T 0.5 -vtkFrames 0 -plot 0 -out obstacle-disc-slope-reach-redistributed)
