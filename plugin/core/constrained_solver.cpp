@@ -4,7 +4,7 @@
 
 namespace nbm {
 
-ConstrainedSolver::ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B)
+ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const SpdInverse> X, const SparseMatrix& B)
     : X_(std::move(X)),
       B_(B),
       n_c_(B.cols() / 2),
@@ -13,7 +13,8 @@ ConstrainedSolver::ConstrainedSolver(std::unique_ptr<SpdInverse> X, const Sparse
       mu_(n_c_),
       correction_(B.rows()) {}
 
-ConstrainedSolver::ConstrainedSolver(std::unique_ptr<CholeskyInverse> X, const SparseMatrix& B)
+ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X,
+                                     const SparseMatrix& B)
     : X_(std::move(X)),
       cholesky_(static_cast<const CholeskyInverse*>(X_.get())),
       B_(B),

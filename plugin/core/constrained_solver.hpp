@@ -25,8 +25,11 @@ namespace nbm {
 
 class ConstrainedSolver {
  public:
-  ConstrainedSolver(std::unique_ptr<SpdInverse> X, const SparseMatrix& B);
-  ConstrainedSolver(std::unique_ptr<CholeskyInverse> X, const SparseMatrix& B);
+  /// X may be shared with others (the Newmark iteration matrix is).
+  ConstrainedSolver(std::shared_ptr<const SpdInverse> X, const SparseMatrix& B);
+  ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X, const SparseMatrix& B);
+  ConstrainedSolver(std::unique_ptr<CholeskyInverse> X, const SparseMatrix& B)
+      : ConstrainedSolver(std::shared_ptr<const CholeskyInverse>(std::move(X)), B) {}
 
   /// x solves X x = r + G^T mu, G x = h (h: one value per contact node).
   /// Once x has its size and the Schur complement of the set is cached, a
@@ -46,7 +49,7 @@ class ConstrainedSolver {
   void solve_with_factor(const ActiveSet& active, const Vector& r, const Vector& h,
                          Vector& x) const;
 
-  std::unique_ptr<SpdInverse> X_;
+  std::shared_ptr<const SpdInverse> X_;
   const CholeskyInverse* cholesky_ = nullptr;  // X_, when it is one
   const SparseMatrix& B_;
   Index n_c_;

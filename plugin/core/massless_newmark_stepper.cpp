@@ -3,23 +3,25 @@
 #include <string>
 
 #include "errors.hpp"
-#include "newmark_stepper.hpp"
 
 namespace nbm {
+namespace {
 
-MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
-                                               double beta, double gamma)
-    : Stepper(problem, dt), beta_(beta), gamma_(gamma) {
-  check_newmark_parameters(beta, gamma);
+void check_massless(const ContactProblem& problem) {
   if (!problem.massless_boundary())
     throw InputError("the massless-boundary Newmark scheme needs M_CC = 0 and M_CO = 0 "
                      "(mass redistribution)");
-  S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
-  // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
-  const Index nc = problem.n_contact();
-  Y_ = S_->forward(problem.constraint_basis().rightCols(nc));
-  lcp_ = std::make_unique<CachedLcpSolver>((beta * dt * dt) * inner_products(Y_));
 }
+
+}  // namespace
+
+MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
+                                               double beta, double gamma)
+    : Stepper(problem, dt),
+      iteration_((check_massless(problem), problem), dt, beta, gamma),
+      S_(*iteration_.S()),
+      Y_(iteration_.contact_columns()),
+      lcp_(std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * inner_products(Y_))) {}
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives
@@ -38,9 +40,8 @@ void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
 
 StepReport MasslessNewmarkStepper::advance(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
-  const double dt = dt_, bdt2 = beta_ * dt * dt;
-  u_hat_ = u_ + dt * v_ + (dt * dt * (0.5 - beta_)) * a_;
-  v_pred_ = v_ + (dt * (1 - gamma_)) * a_;
+  const double bdt2 = iteration_.beta_dt2();
+  iteration_.predict(u_, v_, a_, u_hat_, v_pred_);
   const auto& c = problem_.contact_index();
   const Index nc = problem_.n_contact();
 
@@ -50,7 +51,7 @@ StepReport MasslessNewmarkStepper::advance(const ContactLoad& next) {
   Vector& a = acceleration_;
   a = next.F;
   a.noalias() -= problem_.K() * u_hat_;
-  S_->forward_in_place(a);  // y
+  S_.forward_in_place(a);  // y
   q_.resize(nc);
   for (Index k = 0; k < nc; ++k)
     q_(k) = (g(k) - u_hat_(c[k])) - bdt2 * Y_.col(k).dot(a);
@@ -59,11 +60,11 @@ StepReport MasslessNewmarkStepper::advance(const ContactLoad& next) {
   const LcpResult& lcp = lcp_->solve(q_, open_);
   for (Index k = 0; k < nc; ++k)
     if (lcp.z(k) != 0) a -= lcp.z(k) * Y_.col(k);
-  S_->backward_in_place(a);
+  S_.backward_in_place(a);
 
   u_ = u_hat_ + bdt2 * a;
   a_.swap(a);  // acceleration_: a workspace again from here
-  v_ = v_pred_ + (gamma_ * dt) * a_;
+  iteration_.correct_velocity(v_pred_, a_, v_);
   // The LCP's z is lambda: z_k = 0 (lcp.active) where contact k is open.
   for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
   // Closed contacts sit exactly on the obstacle, not only to the round-off of

@@ -19,7 +19,7 @@
 #include <memory>
 
 #include "lcp.hpp"
-#include "spd_inverse.hpp"
+#include "newmark_iteration.hpp"
 #include "stepper.hpp"
 
 namespace nbm {
@@ -46,8 +46,8 @@ class MasslessNewmarkStepper final : public Stepper {
   StepReport advance(const ContactLoad& next) override;
 
  private:
-  double beta_, gamma_;
-  std::unique_ptr<CholeskyInverse> S_;
+  NewmarkIteration iteration_;
+  const CholeskyInverse& S_;              // the iteration matrix
   SparseMatrix Y_;                        // L^-1 P E_C
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   // Workspaces of a step (sized by the first one).

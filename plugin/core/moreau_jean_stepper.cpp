@@ -10,13 +10,15 @@ namespace nbm {
 
 MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
                                      double restitution)
-    : Stepper(problem, dt), restitution_(restitution) {
+    : Stepper(problem, dt),
+      restitution_(restitution),
+      iteration_(problem, dt, 0.25, 0.5),
+      S_(*iteration_.S()),
+      W_CC_(inner_products(iteration_.contact_columns())),
+      impulse_(Vector::Zero(problem.n_contact())) {
   if (!(restitution >= 0 && restitution <= 1))
     throw InputError("restitution: " + std::to_string(restitution) +
                      ", expected a coefficient in [0, 1]");
-  S_ = make_cholesky_inverse(problem.M() + (0.25 * dt * dt) * problem.K(), "M + dt^2/4 K");
-  W_CC_ = S_->gram(problem.constraint_basis().rightCols(problem.n_contact()));
-  impulse_ = Vector::Zero(problem.n_contact());
 }
 
 void MoreauJeanStepper::start(const ContactLoad& load) {
@@ -57,7 +59,7 @@ StepReport MoreauJeanStepper::advance(const ContactLoad& next) {
   // Free velocity (theta = 1/2, load at the midpoint).
   Vector v_free = problem_.M() * v_ + dt * (0.5 * (F_ + F_next) - problem_.K() * u_) -
                   (0.25 * dt * dt) * (problem_.K() * v_);
-  S_->solve_in_place(v_free);
+  S_.solve_in_place(v_free);
 
   // Contacts predicted closed at mid-step (the gap rate is g' - v_C), and
   // Newton's law on them in the separation velocities w = g' - v_C.
@@ -83,7 +85,7 @@ StepReport MoreauJeanStepper::advance(const ContactLoad& next) {
       impulse_(closed[a]) = lcp.z(a);
       correction(c[closed[a]]) = -lcp.z(a);
     }
-    S_->solve_in_place(correction);
+    S_.solve_in_place(correction);
     v_next += correction;
   }
   u_ += (0.5 * dt) * (v_ + v_next);

@@ -18,7 +18,7 @@
 
 #include <memory>
 
-#include "spd_inverse.hpp"
+#include "newmark_iteration.hpp"
 #include "stepper.hpp"
 
 namespace nbm {
@@ -48,7 +48,8 @@ class MoreauJeanStepper final : public Stepper {
 
  private:
   double restitution_;
-  std::unique_ptr<SpdInverse> S_;
+  NewmarkIteration iteration_;  // its matrix M + dt^2/4 K (beta = 1/4)
+  const CholeskyInverse& S_;
   Matrix W_CC_;
   Vector impulse_;
 };

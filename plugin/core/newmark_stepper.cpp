@@ -7,25 +7,12 @@
 
 namespace nbm {
 
-void check_newmark_parameters(double beta, double gamma) {
-  if (!(beta > 0 && beta <= 0.5))
-    throw InputError("beta: " + std::to_string(beta) +
-                     ", expected 0 < beta <= 1/2 (beta = 0 is the explicit scheme)");
-  if (!(gamma >= 0.5 && gamma <= 1))
-    throw InputError("gamma: " + std::to_string(gamma) + ", expected 1/2 <= gamma <= 1");
-}
-
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
                                NewmarkParameters parameters)
     : Stepper(problem, dt),
       parameters_(parameters),
-      solver_(
-          [&] {
-            check_newmark_parameters(parameters.beta, parameters.gamma);
-            const SparseMatrix S = problem.M() + (parameters.beta * dt * dt) * problem.K();
-            return make_cholesky_inverse(S, "M + beta dt^2 K");
-          }(),
-          problem.constraint_basis()) {}
+      iteration_(problem, dt, parameters.beta, parameters.gamma),
+      solver_(iteration_.S(), problem.constraint_basis()) {}
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
@@ -38,7 +25,7 @@ void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
 
 void NewmarkStepper::solve_step(const ActiveSet& active, const ContactLoad& next,
                                 Vector& u_next, Vector& a_next) {
-  const double bdt2 = parameters_.beta * dt_ * dt_;
+  const double bdt2 = iteration_.beta_dt2();
   displacement_constraint(next, active, h_);  // h
   acceleration_constraint(next, active, h_accel_);
   u_hat_ = u_pred_;
@@ -67,9 +54,7 @@ NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
 
 StepReport NewmarkStepper::advance(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
-  const double dt = dt_, beta = parameters_.beta, gamma = parameters_.gamma;
-  u_pred_ = u_ + dt * v_ + (dt * dt * (0.5 - beta)) * a_;
-  v_pred_ = v_ + (dt * (1 - gamma)) * a_;
+  iteration_.predict(u_, v_, a_, u_pred_, v_pred_);
 
   // Fixed point on the active set at t_{n+1} (§5): solve with a guess, then
   // take the LCP's set at the new interior displacement until they agree.
@@ -104,7 +89,7 @@ StepReport NewmarkStepper::advance(const ContactLoad& next) {
     fall_back(next, report);
 
   a_.swap(a_next_);  // a_next_, u_next_: workspaces again from here
-  v_ = v_pred_ + (gamma * dt) * a_;
+  iteration_.correct_velocity(v_pred_, a_, v_);
   u_.swap(u_next_);
   return report;
 }

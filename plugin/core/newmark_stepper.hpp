@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "constrained_solver.hpp"
+#include "newmark_iteration.hpp"
 #include "stepper.hpp"
 
 namespace nbm {
@@ -14,9 +15,6 @@ struct NewmarkParameters {
   double gamma = 0.5;
   int max_active_set_iterations = 25;
 };
-
-/// Throws InputError unless 0 < beta <= 1/2 and 1/2 <= gamma <= 1.
-void check_newmark_parameters(double beta, double gamma);
 
 class NewmarkStepper final : public Stepper {
  public:
@@ -58,7 +56,8 @@ class NewmarkStepper final : public Stepper {
   void fall_back(const ContactLoad& next, StepReport& report);
 
   NewmarkParameters parameters_;
-  ConstrainedSolver solver_;
+  NewmarkIteration iteration_;
+  ConstrainedSolver solver_;  // with the iteration matrix
   // Workspaces of a step (sized by the first one): u_pred_, v_pred_ the
   // predictors; u_hat_, h_, r_ of solve_step; the guessed active set and the
   // solution for it; the candidates tried_[0 .. n_tried_).

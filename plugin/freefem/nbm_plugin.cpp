@@ -11,6 +11,7 @@
 //   nbmObstacle(S, g, gdot, gddot);   // a moving obstacle: gaps and rates at
 //                                     // the time of the next nbmInit/nbmStep
 //   nbmLoadRates(S, Fdot, Fddot);     // a load varying on the contact dofs
+//   nbmReplaceContacts(S, cdofs, cnormals, cgaps, u, v, F); // re-linearisation
 //   nbmRestart(S, u, v, F, t, a, act [, state]); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...
@@ -137,6 +138,28 @@ long nbm_obstacle(NbmHandle* const& h, KN<double>* const& g, KN<double>* const& 
   return 0;
 }
 
+// nbmReplaceContacts(S, cdofs, cnormals, cgaps, u, v, F): a new contact
+// description at the current state (re-linearisation), one setup.
+long nbm_replace_contacts(NbmHandle* const& h, KN<long>* const& dofs, KN<double>* const& normals,
+                          KN<double>* const& gaps, KN<double>* const& u, KN<double>* const& v,
+                          KN<double>* const& F) {
+  const char* f = "nbmReplaceContacts";
+  nbm::Solver& S = solver_of(h, f);
+  if (!S.initialized()) fail("nbmReplaceContacts: no state yet; call nbmInit first");
+  check_distinct(u, v, f);
+  nbm::ContactDescription contact;
+  contact.dofs = vector_of<long>(dofs, f, "contact dofs");
+  contact.normals = vector_of<double>(normals, f, "normals");
+  contact.gaps = vector_of<double>(gaps, f, "gaps");
+  std::vector<double> uu = vector_of<double>(u, f, "u");
+  std::vector<double> vv = vector_of<double>(v, f, "v");
+  const std::vector<double> FF = vector_of<double>(F, f, "F");
+  guarded(f, [&] { S.replace_contacts(contact, uu, vv, FF); });
+  assign(u, uu);
+  assign(v, vv);
+  return S.n_contact();
+}
+
 // nbmLoadRates(S, Fdot, Fddot): time derivatives of the load at the time of
 // the next call (arrays of size 0: zero).
 long nbm_load_rates(NbmHandle* const& h, KN<double>* const& F_rate, KN<double>* const& F_accel) {
@@ -231,6 +254,8 @@ void Load_Init() {
              new OneOperator7_<long, H, R, R, R, double, R, KN<long>*>(nbm_restart));
   Global.Add("nbmRestart", "(",
              new OneOperator8_<long, H, R, R, R, double, R, KN<long>*, R>(nbm_restart_with_state));
+  Global.Add("nbmReplaceContacts", "(",
+             new OneOperator7_<long, H, KN<long>*, R, R, R, R, R>(nbm_replace_contacts));
   Global.Add("nbmObstacle", "(", new OneOperator4_<long, H, R, R, R>(nbm_obstacle));
   Global.Add("nbmLoadRates", "(", new OneOperator3_<long, H, R, R>(nbm_load_rates));
   Global.Add("nbmSchemeState", "(", new OneOperator2_<long, H, R>(nbm_scheme_state));

@@ -27,11 +27,15 @@ endforeach()
 # true distance is >= 0 and a closed contact sits at sqrt(R^2 + |u_t|^2) - R
 # (<= |u_t|^2/(2R)); inside, the distance is >= R - sqrt(R^2 + |u_t|^2)
 # (>= -|u_t|^2/(2R)); 1e-12 of the displacement scale for round-off. The body
-# must touch the obstacle.
+# must touch the obstacle. With -relinearize N the circle is linearised anew
+# at the current configuration every N steps (nbmLinearizeAt,
+# nbmReplaceContacts) and u_t counts from the last re-linearisation.
 foreach(variant
     "plate-cylinder-P1;-offset;0"
     "plate-cylinder-off-P2;-offset;0.2;-order;2;-T;0.6"
     "plate-cylinder-redistributed;-offset;0.1;-mass;redistributed;-T;0.6"
+    "plate-cylinder-relinearized;-offset;0.3;-relinearize;20"
+    "plate-cylinder-relinearized-P2-redistributed;-offset;0.3;-relinearize;10;-order;2;-mass;redistributed;-T;0.6"
     "disc-casing-P1;-geo;disc.geo;-side;inside;-Rc;0.8"
     "disc-casing-P2-redistributed;-geo;disc.geo;-side;inside;-Rc;0.8;-order;2;-mass;redistributed")
   list(POP_FRONT variant name)

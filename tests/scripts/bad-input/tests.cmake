@@ -26,6 +26,7 @@ nbm_bad_valid(valid-explicit ${NBM_BAD_DIR}/cases.edp -case valid-explicit)
 nbm_bad_valid(valid-redistributed ${NBM_BAD_DIR}/cases.edp -case valid-redistributed)
 nbm_bad_valid(valid-moreau-jean ${NBM_BAD_DIR}/cases.edp -case valid-moreau-jean)
 nbm_bad_valid(valid-restart ${NBM_BAD_DIR}/cases.edp -case valid-restart)
+nbm_bad_valid(valid-replace ${NBM_BAD_DIR}/cases.edp -case valid-replace)
 nbm_bad_valid(plane-valid-newmark ${NBM_BAD_DIR}/plane.edp -case valid-newmark)
 nbm_bad_valid(plane-valid-explicit ${NBM_BAD_DIR}/plane.edp -case valid-explicit)
 
@@ -121,6 +122,12 @@ nbm_bad_case(gaps-before-init [=[nbmGaps: call nbmInit first]=])
 nbm_bad_case(active-before-init [=[nbmActive: call nbmInit first]=])
 nbm_bad_case(energies-before-init [=[nbmEnergies: call nbmInit first]=])
 nbm_bad_case(acceleration-before-init [=[nbmAcceleration: call nbmInit first]=])
+
+# ---- re-linearisation (nbmReplaceContacts) ----
+nbm_bad_case(replace-before-init [=[nbmReplaceContacts: no state yet. call nbmInit first]=])
+nbm_bad_case(replace-normals-size [=[nbmReplaceContacts: normals: size 0, expected 1 \(one component per contact dof\)]=])
+nbm_bad_case(replace-penetrating [=[nbmReplaceContacts: u: initial penetration at contact node 0]=])
+nbm_bad_case(replace-u-changed [=[nbmReplaceContacts: u, v: changed since the last step]=])
 
 # ---- an NBM declared without construction ----
 nbm_bad_case(unconstructed-step [=[nbmStep: the NBM object was not constructed]=])

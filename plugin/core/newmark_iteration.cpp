@@ -1,0 +1,29 @@
+#include "newmark_iteration.hpp"
+
+#include <string>
+
+#include "errors.hpp"
+
+namespace nbm {
+
+void check_newmark_parameters(double beta, double gamma) {
+  if (!(beta > 0 && beta <= 0.5))
+    throw InputError("beta: " + std::to_string(beta) +
+                     ", expected 0 < beta <= 1/2 (beta = 0 is the explicit scheme)");
+  if (!(gamma >= 0.5 && gamma <= 1))
+    throw InputError("gamma: " + std::to_string(gamma) + ", expected 1/2 <= gamma <= 1");
+}
+
+NewmarkIteration::NewmarkIteration(const ContactProblem& problem, double dt, double beta,
+                                   double gamma)
+    : problem_(problem), dt_(dt), beta_(beta), gamma_(gamma) {
+  check_newmark_parameters(beta, gamma);
+  S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
+}
+
+SparseMatrix NewmarkIteration::contact_columns() const {
+  // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
+  return S_->forward(problem_.constraint_basis().rightCols(problem_.n_contact()));
+}
+
+}  // namespace nbm
