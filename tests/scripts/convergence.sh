@@ -5,7 +5,8 @@
 # reads `<key>=<value>` from its output for each comma-separated key, requires
 # every error to decrease at every refinement and the finest value of the
 # first key to be <= max-final (inf: no bound), and prints the table with
-# the observed rates and the least-squares rate.
+# the observed rates and the least-squares rate. With NBM_MIN_RATE set in the
+# environment, the least-squares rate of the first key must be >= it too.
 set -u
 build=$1 repo=$2 script=$3 keys=$4 max_final=$5 Ns=$6
 shift 6
@@ -28,7 +29,7 @@ for N in $Ns; do
   done
   echo "$row" >> "$table"
 done
-awk -v keys="$keys" -v maxf="$max_final" -v args="$*" '
+awk -v keys="$keys" -v maxf="$max_final" -v minrate="${NBM_MIN_RATE:-}" -v args="$*" '
   BEGIN { nk = split(keys, key, ",") }
   { N[NR] = $1; for (k = 1; k <= nk; k++) e[NR, k] = $(k + 1) }
   END {
@@ -42,7 +43,9 @@ awk -v keys="$keys" -v maxf="$max_final" -v args="$*" '
         if (i > 1 && !(e[i, k] < e[i-1, k])) { print "FAIL: " key[k] " did not decrease from N=" N[i-1] " to N=" N[i]; ok = 0 }
         x = log(N[i]); y = log(e[i, k]); sx += x; sy += y; sxx += x*x; sxy += x*y
       }
-      printf "fitted rate of %s: %.3f\n", key[k], -(NR * sxy - sx * sy) / (NR * sxx - sx * sx)
+      fitted = -(NR * sxy - sx * sy) / (NR * sxx - sx * sx)
+      printf "fitted rate of %s: %.3f\n", key[k], fitted
+      if (k == 1 && minrate != "" && !(fitted >= minrate)) { print "FAIL: fitted rate of " key[1] " = " fitted " < " minrate; ok = 0 }
     }
     if (maxf != "inf" && !(e[NR, 1] <= maxf)) { print "FAIL: finest " key[1] " = " e[NR, 1] " > " maxf; ok = 0 }
     exit ok ? 0 : 1
