@@ -27,9 +27,11 @@
 // of its components: the curve's elements are straight.
 //
 // Wrong mesh types: P4L has FreeFEM's curve-element type, so
-// `fespace Vh(Th2d, P4L)` on a mesh, mesh3 or meshS is rejected when the
-// script is compiled (a type error listing the valid fespace constructors),
-// before anything runs.
+// `fespace Vh(Th2d, P4L)` on a mesh, mesh3 or meshS has no matching fespace
+// constructor; FreeFEM would then print its whole table of constructors in
+// mangled type names. The plugin adds those three constructors for curve
+// elements, each stopping the compilation with a message saying what is
+// wrong (for every meshL element, P1L to P4L), before anything runs.
 #include "ff++.hpp"
 #include "AddNewFE.h"
 
@@ -149,12 +151,34 @@ static TypeOfFE *FindTriangleElement(const char *name) {
   return GetAny<TypeOfFE *>((*e->second.second)(NullStack));
 }
 
+// `fespace Vh(Th, <curve element>)` with Th a PMesh (mesh, mesh3, meshS):
+// a compile error that names the mistake instead of FreeFEM's list of the
+// constructors that do exist.
+template <class PFes, class PMesh>
+class CurveElementOnOtherMesh : public OneOperator {
+ public:
+  explicit CurveElementOnOtherMesh(const char *meshType)
+      : OneOperator(atype<PFes *>(), atype<PFes *>(), atype<PMesh *>(), atype<TypeOfFEL *>()),
+        meshType_(meshType) {}
+  E_F0 *code(const basicAC_F0 &) const override {
+    CompileError(std::string("fespace: a finite element of curve meshes (P1L ... P4L) on a ") + meshType_ +
+                 "; these elements need a meshL");
+    return nullptr;
+  }
+
+ private:
+  const char *meshType_;
+};
+
 static PkLagrangeCurve P4Curve(4);
 
 static void Init() {
   // P3 on meshL is Debian's P3L (Element_P3); only P4 is missing.
   AddNewFEL("P4L", &P4Curve);
   if (TypeOfFE *p4 = FindTriangleElement("P4")) TEF2dtoL[p4] = &P4Curve;
+  TheOperators->Add("<-", new CurveElementOnOtherMesh<pfes, pmesh>("mesh (2d)"),
+                    new CurveElementOnOtherMesh<pfes3, pmesh3>("mesh3"),
+                    new CurveElementOnOtherMesh<pfesS, pmeshS>("meshS"));
 }
 
 }  // namespace Fem2D

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # P4L on a mesh that is not a meshL must be refused by FreeFEM when the script
-# is compiled (exit 1, "Compile error", the fespace constructor's type error
-# naming the mesh type and GTypeOfFE<MeshL>), never a crash or a run.
+# is compiled (exit 1, "Compile error" with Element_PkL's message naming the
+# mesh type), never a crash or a run.
 #   element-wrong-mesh.sh <build-dir> <repo-dir>
 # The same script on a meshL must run: the refusal comes from the mesh type.
 set -u
@@ -22,14 +22,14 @@ check() {  # <name> <expected exit code> <mesh declaration>
       printf '%s\n' "$out" | tail -n 5; echo "FAIL: P4L on a $1: exit $code"; ok=0
     fi
   elif [ $code -eq 1 ] && printf '%s\n' "$out" | grep -q 'Compile error' \
-      && printf '%s\n' "$out" | grep -q "error operator <-.*$4.*GTypeOfFEINS_5MeshL"; then
-    echo "OK: P4L on a $1 refused at compile time: $(printf '%s\n' "$out" | grep -m1 'error operator')"
+      && printf '%s\n' "$out" | grep -q "Compile error : fespace: a finite element of curve meshes (P1L ... P4L) on a $4; these elements need a meshL"; then
+    echo "OK: P4L on a $1 refused at compile time: $(printf '%s\n' "$out" | grep -m1 'Compile error')"
   else
     printf '%s\n' "$out" | tail -n 5; echo "FAIL: P4L on a $1: exit $code, expected a compile error"; ok=0
   fi
 }
 check meshL 0 'meshL Th = segment(2, [x]);'
-check mesh 1 'mesh Th = square(2, 2);' 'Fem2D4Mesh'
-check mesh3 1 'mesh3 Th = cube(2, 2, 2);' 'Fem2D5Mesh3'
-check meshS 1 'meshS Th = square3(2, 2, [x, y, 0]);' 'Fem2D5MeshS'
+check mesh 1 'mesh Th = square(2, 2);' 'mesh (2d)'
+check mesh3 1 'mesh3 Th = cube(2, 2, 2);' 'mesh3'
+check meshS 1 'meshS Th = square3(2, 2, [x, y, 0]);' 'meshS'
 [ $ok -eq 1 ]
