@@ -35,7 +35,6 @@
 #include "ff++.hpp"
 #include "AddNewFE.h"
 
-#include <cstring>
 
 namespace Fem2D {
 
