@@ -50,6 +50,10 @@ start=$SECONDS
 SCRIPT_TESTS='contact-helpers|plate-free-flight-P1|plate-free-flight-P2|plate-energy|chattering'
 SCRIPT_TESTS+='|bouncing-bar-convergence-explicit|bouncing-bar-convergence-redistributed'
 SCRIPT_TESTS+='|clamped-bar-convergence-P1-scaled|restart-newmark|restart-disc-P2'
+# Obstacles: a 3D drop, the re-linearised plate on a cylinder (nbmReplaceContacts),
+# a moving table restarted across processes (nbmObstacle, the scheme state).
+SCRIPT_TESTS+='|obstacle-drop-3d-20-P1-redistributed|obstacle-plate-cylinder-relinearized'
+SCRIPT_TESTS+='|restart-table-moreau-jean|blade-tip-P1'
 
 finish() {  # finish <passed> <failed>
   echo "sanitize: total time $((SECONDS - start)) s"
