@@ -34,22 +34,10 @@ done
 cat "$table"
 
 for order in 1 2 3; do run -order $order -N 40 -out "bar-P$order-N40" >/dev/null; done
-gnuplot <<GP
-set datafile separator ','
-set terminal pngcairo size 1100,800 font ',11'
-set output '$repo/docs/bouncing-bar.png'
-set multiplot layout 2,1 title 'Bouncing bar (paper Fig. 1): height of the contact end, N = 40, dt = h/(k c)'
-set xlabel 't'; set ylabel 'u(0,t)'; set grid
-set key outside top center horizontal
-curves = "'bar-P1-N40.csv' using 1:3 with lines lw 3 lc rgb 'black' title 'exact', \
+plot_contact_end "$repo/docs/bouncing-bar.png" \
+  "Bouncing bar (paper Fig. 1): height of the contact end, N = 40, dt = h/(k c)" \
+  "'bar-P1-N40.csv' using 1:3 with lines lw 3 lc rgb 'black' title 'exact', \
   '' using 1:2 with lines lw 1.5 lc rgb '#1f77b4' title 'NBM P1', \
   'bar-P2-N40.csv' using 1:2 with lines lw 1.5 lc rgb '#d62728' title 'NBM P2', \
   'bar-P3-N40.csv' using 1:2 with lines lw 1.5 lc rgb '#2ca02c' title 'NBM P3'"
-plot @curves
-set title 'zoom: first contact, flight with the bar vibrating, second contact'
-set xrange [0.8:4.6]; set yrange [-0.2:4.8]
-unset key
-plot @curves
-unset multiplot
-GP
 echo "figures: wrote $repo/docs/bouncing-bar.png and $table"

@@ -7,3 +7,25 @@
 summary_value() {
   printf '%s\n' "$1" | tr -s ' \t' '\n\n' | sed -n "s/^$2=//p" | tail -n 1
 }
+
+# plot_contact_end PNG TITLE CURVES: the paper-Figure-1 style plot of the
+# bouncing bar's contact-end height u(0,t) (bouncing-bar.edp CSVs: t, u(0,t),
+# exact) with a zoom on the first contact, flight and second contact. CURVES:
+# gnuplot plot items, the exact solution first.
+plot_contact_end() {
+  gnuplot <<GP
+set datafile separator ','
+set terminal pngcairo size 1100,800 font ',11'
+set output '$1'
+set multiplot layout 2,1 title '$2'
+set xlabel 't'; set ylabel 'u(0,t)'; set grid; set autoscale xfix
+set key outside top center horizontal
+curves = "$3"
+plot @curves
+set title 'zoom: first contact, flight with the bar vibrating, second contact'
+set xrange [0.8:4.6]; set yrange [-0.2:4.8]
+unset key
+plot @curves
+unset multiplot
+GP
+}

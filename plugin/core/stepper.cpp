@@ -156,28 +156,27 @@ void Stepper::project_rates(const ContactLoad& load) {
   boundary_.project(a_, active_, h_);
 }
 
-void Stepper::displacement_constraint(const ContactLoad& load, const ActiveSet& active,
-                                      Vector& h) const {
+void Stepper::constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
+                         Vector& h) const {
   const auto& c = problem_.contact_index();
   h.resize(static_cast<Index>(c.size()));
   for (std::size_t k = 0; k < c.size(); ++k)
-    h(k) = active[k] ? load.obstacle.g(k) : load.F(c[k]);
+    h(k) = active[k] ? closed(k) : (open ? (*open)(c[k]) : 0.0);
+}
+
+void Stepper::displacement_constraint(const ContactLoad& load, const ActiveSet& active,
+                                      Vector& h) const {
+  constraint(load.obstacle.g, &load.F, active, h);
 }
 
 void Stepper::rate_constraint(const ContactLoad& load, const ActiveSet& active,
                               Vector& h) const {
-  const auto& c = problem_.contact_index();
-  h.resize(static_cast<Index>(c.size()));
-  for (std::size_t k = 0; k < c.size(); ++k)
-    h(k) = active[k] ? load.obstacle.g_rate(k) : (load.F_rate ? (*load.F_rate)(c[k]) : 0.0);
+  constraint(load.obstacle.g_rate, load.F_rate, active, h);
 }
 
 void Stepper::acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
                                       Vector& h) const {
-  const auto& c = problem_.contact_index();
-  h.resize(static_cast<Index>(c.size()));
-  for (std::size_t k = 0; k < c.size(); ++k)
-    h(k) = active[k] ? load.obstacle.g_accel(k) : (load.F_accel ? (*load.F_accel)(c[k]) : 0.0);
+  constraint(load.obstacle.g_accel, load.F_accel, active, h);
 }
 
 Energies Stepper::energies() const {

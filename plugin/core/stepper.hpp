@@ -156,6 +156,9 @@ class Stepper {
 
  private:
   void check_load(const ContactLoad& load) const;
+  /// h_k = closed(k) on closed contacts, (*open)(c_k) (0 if null) on open ones.
+  void constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
+                  Vector& h) const;
   /// v_C, a_C from the nodal boundary relation of the new active set.
   void project_rates(const ContactLoad& load);
 

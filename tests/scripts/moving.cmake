@@ -92,11 +92,7 @@ foreach(variant
     "table-explicit;-tableA;0.02;-scheme;explicit"
     "table-moreau-jean;-tableA;0.02;-scheme;moreau-jean;-restitution;0.5"
     "table-disc-P2-moreau-jean;-tableA;0.02;-geo;${PROJECT_SOURCE_DIR}/geo/disc.geo;-order;2;-scheme;moreau-jean")
-  list(POP_FRONT variant name)
-  add_test(NAME script.restart-${name}
-    COMMAND bash ${NBM_SCRIPTS}/restart.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${variant}
-    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
-  set_tests_properties(script.restart-${name} PROPERTIES TIMEOUT 300 LABELS "script;moving")
+  nbm_restart_test("${variant}" "script;moving")
 endforeach()
 
 # ---- bad input of the moving-obstacle API (bad-input/obstacle.edp) ----

@@ -86,6 +86,14 @@ set_tests_properties(script.plate-energy PROPERTIES TIMEOUT 600 LABELS script)
 # same process and in a new one, reproduces the uninterrupted run bit for bit,
 # for every scheme and mass treatment; the disc and the inclined ground have
 # rotated contact nodes (inexact round trip through user coordinates).
+# nbm_restart_test(<variant> <labels>): variant = "name;restart.edp args...".
+function(nbm_restart_test variant labels)
+  list(POP_FRONT variant name)
+  add_test(NAME script.restart-${name}
+    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/restart.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${variant}
+    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+  set_tests_properties(script.restart-${name} PROPERTIES TIMEOUT 300 LABELS "${labels}")
+endfunction()
 foreach(variant
     "newmark;-scheme;newmark"
     "explicit;-scheme;explicit"
@@ -93,11 +101,7 @@ foreach(variant
     "redistributed;-mass;redistributed"
     "disc-P2;-geo;${PROJECT_SOURCE_DIR}/geo/disc.geo;-order;2"
     "slope-redistributed;-slope;0.1;-h0;0.2;-mass;redistributed")
-  list(POP_FRONT variant name)
-  add_test(NAME script.restart-${name}
-    COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/restart.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR} ${variant}
-    WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
-  set_tests_properties(script.restart-${name} PROPERTIES TIMEOUT 300 LABELS script)
+  nbm_restart_test("${variant}" script)
 endforeach()
 
 # Long run, shortened (tests/long-run.sh; --full for 10^6 bar steps): no NaN,
