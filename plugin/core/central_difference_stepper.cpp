@@ -47,7 +47,7 @@ double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
 }
 
 CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem, double dt)
-    : Stepper(problem, dt),
+    : NbmStepper(problem, dt),
       lumped_(diagonal_matrix(problem.lumped_mass())),
       solver_(make_diagonal_inverse(lumped_.diagonal(), "M (row-sum lumped)"),
               problem.constraint_basis()),
@@ -68,7 +68,7 @@ void CentralDifferenceStepper::solve_acceleration(const ContactLoad& load) {
   solver_.solve(active_, r_, h_accel_, a_);
 }
 
-StepReport CentralDifferenceStepper::advance(const ContactLoad& next) {
+StepReport CentralDifferenceStepper::advance_interior(const ContactLoad& next) {
   StepReport report;
   report.active_set_iterations = 1;
   a_old_ = a_;

@@ -5,7 +5,7 @@
 #pragma once
 
 #include "constrained_solver.hpp"
-#include "stepper.hpp"
+#include "nbm_stepper.hpp"
 
 namespace nbm {
 
@@ -14,7 +14,7 @@ namespace nbm {
 /// capped by the Gershgorin bound (an upper bound).
 double max_eigenvalue(const SparseMatrix& K, const Vector& m);
 
-class CentralDifferenceStepper final : public Stepper {
+class CentralDifferenceStepper final : public NbmStepper {
  public:
   /// Throws InputError if a lumped mass is not positive or if dt exceeds the
   /// critical time step 2 / omega_max (the reduced system's omega_max is
@@ -28,7 +28,7 @@ class CentralDifferenceStepper final : public Stepper {
  protected:
   const SparseMatrix& mass() const override { return lumped_; }
   void solve_acceleration(const ContactLoad& load) override;
-  StepReport advance(const ContactLoad& next) override;
+  StepReport advance_interior(const ContactLoad& next) override;
 
  private:
   SparseMatrix lumped_;

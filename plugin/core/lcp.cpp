@@ -79,7 +79,7 @@ void solve_principal(const Eigen::LLT<Matrix>& llt, const Vector& q,
 // r.active (a pointer, null if A_FF is not positive definite); F, infeasible
 // and work are workspaces.
 template <class Factor>
-void pivot(const Matrix& A, const Vector& q, LcpResult& r, std::vector<Index>& F,
+void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
            std::vector<Index>& infeasible, Vector& work, Factor factor) {
   const Index n = q.size();
   // Single pivots alone (Murty) are finite on P-matrices but may need many
@@ -92,6 +92,7 @@ void pivot(const Matrix& A, const Vector& q, LcpResult& r, std::vector<Index>& F
   for (long p = 0; p < max_pivots; ++p) {
     free_indices(r.active, F);
     ++r.pivots;
+    double kappa = 1;  // estimate of cond(A_FF): the forward error of z_F grows with it
     if (F.empty()) {
       r.z.setZero();
     } else {
@@ -100,6 +101,8 @@ void pivot(const Matrix& A, const Vector& q, LcpResult& r, std::vector<Index>& F
         throw NumericalError("LCP: principal block of size " + std::to_string(F.size()) +
                              " is not positive definite (the matrix is not a P-matrix)");
       solve_principal(*llt, q, F, work, r.z);
+      const auto d = llt->matrixLLT().diagonal().cwiseAbs();
+      kappa = std::pow(d.maxCoeff() / d.minCoeff(), 2);
     }
     r.w = q;
     r.w.noalias() += A * r.z;
@@ -107,17 +110,20 @@ void pivot(const Matrix& A, const Vector& q, LcpResult& r, std::vector<Index>& F
     if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
       throw NumericalError("LCP: the solution overflows; the data are too badly scaled");
 
-    // Round-off tolerances per row, from the terms of w_i = q_i + (A z)_i:
-    // |q_i| + sum_j |A_ij| |z_j| (and that over A_ii for z_i). A row far from
-    // another (A_ij = 0) is not judged on the other's scale, so one huge gap
-    // or reaction does not loosen the sign checks of the rest.
+    // Round-off tolerances. z_F comes from a solve: its error is relative to
+    // |z| as a whole. w_i = q_i + (A z)_i inherits that error through A,
+    // amplified by the conditioning of the solve (kappa |A| |z|), plus its
+    // own term q_i: judged on its own row, so that one huge entry of q (the
+    // gap of a node far from the obstacle, in the massless step's LCP) does
+    // not loosen the sign checks of the other rows. (Without kappa, the
+    // checks are too tight on ill-conditioned blocks and the pivoting cycles:
+    // the fuzz corpus keeps such cases, lcp-row-tolerance-cycling*.)
+    const double z_scale = r.z.cwiseAbs().maxCoeff();
+    const double tol_z = 8 * n * kEps * z_scale;
     infeasible.clear();
     for (Index i = 0; i < n; ++i) {
-      double row = std::abs(q(i));
-      for (Index j : F) row += std::abs(A(i, j)) * std::abs(r.z(j));
-      const double tol = 8 * n * kEps * row;
-      if ((!r.active[i] && r.z(i) < -std::max(tol / A(i, i), 8 * n * kEps * std::abs(r.z(i)))) ||
-          (r.active[i] && r.w(i) < -tol))
+      const double tol_w = 8 * n * kEps * (std::abs(q(i)) + kappa * a_max * z_scale);
+      if ((!r.active[i] && r.z(i) < -tol_z) || (r.active[i] && r.w(i) < -tol_w))
         infeasible.push_back(i);
     }
 
@@ -156,7 +162,7 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   std::vector<Index> F, infeasible;
   Vector work(n);
   Eigen::LLT<Matrix> llt;
-  pivot(A, q, r, F, infeasible, work,
+  pivot(A, q, A.cwiseAbs().maxCoeff(), r, F, infeasible, work,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           llt.compute(principal_block(A, free));
           return llt.info() == Eigen::Success ? &llt : nullptr;
@@ -166,6 +172,7 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
 
 CachedLcpSolver::CachedLcpSolver(Matrix A) : A_(std::move(A)), rhs_(A_.rows()) {
   check_matrix(A_, A_.rows());
+  a_max_ = A_.size() > 0 ? A_.cwiseAbs().maxCoeff() : 0.0;
   free_.reserve(A_.rows());
   infeasible_.reserve(A_.rows());
   result_.active.reserve(A_.rows());
@@ -179,7 +186,7 @@ const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>
   check_data(q, guess);
   start(result_, q, guess);
   if (n == 0) return result_;
-  pivot(A_, q, result_, free_, infeasible_, rhs_,
+  pivot(A_, q, a_max_, result_, free_, infeasible_, rhs_,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           const auto& llt = principal_blocks_.get(
               result_.active, [&] { return Eigen::LLT<Matrix>(principal_block(A_, free)); });

@@ -59,6 +59,7 @@ class CachedLcpSolver {
 
  private:
   Matrix A_;
+  double a_max_;
   mutable ActiveSetCache<Eigen::LLT<Matrix>> principal_blocks_;
   mutable LcpResult result_;
   mutable std::vector<Index> free_, infeasible_;

@@ -17,7 +17,7 @@ void check_massless(const ContactProblem& problem) {
 
 MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
                                                double beta, double gamma)
-    : Stepper(problem, dt),
+    : NbmStepper(problem, dt),
       iteration_((check_massless(problem), problem), dt, beta, gamma),
       S_(*iteration_.S()),
       Y_(iteration_.contact_columns()),
@@ -38,7 +38,7 @@ void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   boundary_.project(a_, active_, h_accel_);
 }
 
-StepReport MasslessNewmarkStepper::advance(const ContactLoad& next) {
+StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
   const double bdt2 = iteration_.beta_dt2();
   iteration_.predict(u_, v_, a_, u_hat_, v_pred_);

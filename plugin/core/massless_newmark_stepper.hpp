@@ -20,11 +20,11 @@
 
 #include "lcp.hpp"
 #include "newmark_iteration.hpp"
-#include "stepper.hpp"
+#include "nbm_stepper.hpp"
 
 namespace nbm {
 
-class MasslessNewmarkStepper final : public Stepper {
+class MasslessNewmarkStepper final : public NbmStepper {
  public:
   /// The problem must have a massless boundary (ContactProblem::
   /// make_boundary_massless). Factors S once and forms Y and W_CC (n_contact
@@ -43,7 +43,7 @@ class MasslessNewmarkStepper final : public Stepper {
   void solve_acceleration(const ContactLoad& load) override;
   /// Only g_{n+1} enters (the contact dofs carry no inertia, so the
   /// obstacle's rates matter only for the reported v_C, a_C).
-  StepReport advance(const ContactLoad& next) override;
+  StepReport advance_interior(const ContactLoad& next) override;
 
  private:
   NewmarkIteration iteration_;

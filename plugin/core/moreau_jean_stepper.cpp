@@ -26,7 +26,7 @@ void MoreauJeanStepper::start(const ContactLoad& load) {
   active_.assign(problem_.n_contact(), false);
   for (Index k = 0; k < gap.size(); ++k) active_[k] = gap(k) <= 0;
   impulse_.setZero();
-  solve_acceleration(load);
+  solve_acceleration(load.F);
 }
 
 void MoreauJeanStepper::restore_scheme_state(const Vector& state) {
@@ -43,9 +43,8 @@ void MoreauJeanStepper::restore_scheme_state(const Vector& state) {
   impulse_ = state;
 }
 
-void MoreauJeanStepper::solve_acceleration(const ContactLoad& load) {
-  // Reported only (the scheme is first order in velocity): M a = F - K u.
-  a_ = load.F - problem_.K() * u_;
+void MoreauJeanStepper::solve_acceleration(const Vector& F) {
+  a_ = F - problem_.K() * u_;
   make_cholesky_inverse(problem_.M(), "M")->solve_in_place(a_);
 }
 
@@ -91,7 +90,7 @@ StepReport MoreauJeanStepper::advance(const ContactLoad& next) {
   u_ += (0.5 * dt) * (v_ + v_next);
   a_ = (v_next - v_) / dt;
   v_ = v_next;
-  const Vector gap_next = boundary_.gaps(u_, next.obstacle.g);
+  const Vector gap_next = gaps(u_, next.obstacle.g);
   for (Index k = 0; k < nc; ++k) active_[k] = impulse_(k) > 0 || gap_next(k) <= 0;
   StepReport report;
   report.active_set_iterations = 1;

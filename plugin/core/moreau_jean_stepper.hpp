@@ -41,12 +41,15 @@ class MoreauJeanStepper final : public Stepper {
   const SparseMatrix& mass() const override { return problem_.M(); }
   /// The given state is taken as it is (no nodal boundary relation).
   void start(const ContactLoad& load) override;
-  void solve_acceleration(const ContactLoad& load) override;
   StepReport advance(const ContactLoad& next) override;
-  bool slaves_contact_dofs() const override { return false; }
+  /// Positions may penetrate by O(dt v): states are not checked for it.
+  bool exact_impenetrability() const override { return false; }
   void restore_scheme_state(const Vector& state) override;
 
  private:
+  /// Reported only (the scheme is first order in velocity): M a = F - K u.
+  void solve_acceleration(const Vector& F);
+
   double restitution_;
   NewmarkIteration iteration_;  // its matrix M + dt^2/4 K (beta = 1/4)
   const CholeskyInverse& S_;

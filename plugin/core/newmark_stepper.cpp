@@ -9,7 +9,7 @@ namespace nbm {
 
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
                                NewmarkParameters parameters)
-    : Stepper(problem, dt),
+    : NbmStepper(problem, dt),
       parameters_(parameters),
       iteration_(problem, dt, parameters.beta, parameters.gamma),
       solver_(iteration_.S(), problem.constraint_basis()) {}
@@ -52,7 +52,7 @@ NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
   return tried_[n_tried_++];
 }
 
-StepReport NewmarkStepper::advance(const ContactLoad& next) {
+StepReport NewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
   iteration_.predict(u_, v_, a_, u_pred_, v_pred_);
 

@@ -6,7 +6,7 @@
 
 #include "constrained_solver.hpp"
 #include "newmark_iteration.hpp"
-#include "stepper.hpp"
+#include "nbm_stepper.hpp"
 
 namespace nbm {
 
@@ -16,7 +16,7 @@ struct NewmarkParameters {
   int max_active_set_iterations = 25;
 };
 
-class NewmarkStepper final : public Stepper {
+class NewmarkStepper final : public NbmStepper {
  public:
   /// Factors S = M + beta dt^2 K once. Throws InputError on beta, gamma out
   /// of (0, 1/2] x [1/2, 1], NumericalError if S is not positive definite.
@@ -29,7 +29,7 @@ class NewmarkStepper final : public Stepper {
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
   void solve_acceleration(const ContactLoad& load) override;
-  StepReport advance(const ContactLoad& next) override;
+  StepReport advance_interior(const ContactLoad& next) override;
 
  private:
   /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:

@@ -199,6 +199,27 @@ struct Solver::Impl {
     a_user.assign(aa.data(), aa.data() + aa.size());
   }
 
+  /// Starts the stepper from the user's u, v, F at time t (published back):
+  /// a new state, or with `continuing` one a run reached (replace_contacts).
+  void start(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
+             double t, bool continuing) {
+    const ContactProblem& p = *problem;
+    const long n = p.n_dofs();
+    const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
+    for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
+      if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
+    const Vector F_int = p.to_internal(FF);
+    if (continuing)
+      stepper->continue_from(p.to_internal(uu), p.to_internal(vv), load(F_int), t);
+    else
+      stepper->initialize(p.to_internal(uu), p.to_internal(vv), load(F_int), t);
+    const Stepper& st = *stepper;  // finite data can still overflow (M^-1 F)
+    if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
+      throw NumericalError("initialization: the state is not finite (overflow); the data are "
+                           "too badly scaled");
+    publish(u, v);
+  }
+
   /// u, v must be the arrays the last call returned.
   void check_unchanged(const std::vector<double>& u, const std::vector<double>& v) const {
     if (u.size() != u_user.size())
@@ -280,19 +301,8 @@ void Solver::set_load_rates(const std::vector<double>& F_rate,
 
 void Solver::initialize(std::vector<double>& u, std::vector<double>& v,
                         const std::vector<double>& F, double t) {
-  const ContactProblem& p = *impl_->problem;
-  const long n = p.n_dofs();
-  const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
-  for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
-    if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-  const Vector F_int = p.to_internal(FF);
-  impl_->stepper->initialize(p.to_internal(uu), p.to_internal(vv), impl_->load(F_int), t);
-  const Stepper& st = *impl_->stepper;  // finite data can still overflow (M^-1 F)
-  if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
-    throw NumericalError("initialization: the state is not finite (overflow); the data are too "
-                         "badly scaled");
+  impl_->start(u, v, F, t, false);
   impl_->steps = impl_->fallbacks = 0;
-  impl_->publish(u, v);
 }
 
 void Solver::restart(std::vector<double>& u, std::vector<double>& v,
@@ -352,25 +362,21 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
 
 void Solver::replace_contacts(const ContactDescription& contact, std::vector<double>& u,
                               std::vector<double>& v, const std::vector<double>& F) {
-  if (!initialized()) throw InputError("replace contacts: no state yet; call the initialization first");
+  if (!initialized())
+    throw InputError("replace contacts: no state yet; call the initialization first");
   impl_->check_unchanged(u, v);
-  const Vector FF = to_vector(F, n_dofs(), "F");
-  if (!FF.allFinite()) throw InputError("F: non-finite entries");
   const double t = time();
-  const long steps = impl_->steps, fallbacks = impl_->fallbacks;
   Impl::Saved saved = impl_->save();  // kept until the new description has worked
   std::vector<double> uu = u, vv = v;
   try {
     impl_->build(impl_->M_user, impl_->K_user, contact);
-    initialize(uu, vv, F, t);
+    impl_->start(uu, vv, F, t, true);
   } catch (...) {
     impl_->put_back(saved);
     throw;
   }
   u = std::move(uu);
   v = std::move(vv);
-  impl_->steps = steps;
-  impl_->fallbacks = fallbacks;
 }
 
 std::vector<double> Solver::reactions() const {

@@ -27,8 +27,7 @@ Obstacle Obstacle::at_rest(const Vector& g) {
   return {g, Vector::Zero(g.size()), Vector::Zero(g.size())};
 }
 
-Stepper::Stepper(const ContactProblem& problem, double dt)
-    : problem_(problem), boundary_(problem), dt_(dt) {
+Stepper::Stepper(const ContactProblem& problem, double dt) : problem_(problem), dt_(dt) {
   if (!(dt > 0) || !std::isfinite(dt))
     throw InputError("dt: " + std::to_string(dt) + ", expected a positive finite time step");
 }
@@ -43,11 +42,18 @@ void Stepper::check_load(const ContactLoad& load) const {
   if (load.F_accel) check_vector(*load.F_accel, n, "load acceleration", "one entry per dof");
 }
 
+Vector Stepper::gaps(const Vector& u, const Vector& g) const {
+  const auto& c = problem_.contact_index();
+  Vector gap = g;
+  for (std::size_t k = 0; k < c.size(); ++k) gap(k) -= u(c[k]);
+  return gap;
+}
+
 void Stepper::check_penetration(const Vector& u, const Vector& g, const char* what) const {
   // Each node against its own scale: the body's displacement and its own
   // gap, never another node's (a far node's large gap must not loosen the
   // check of the nodes in contact).
-  const Vector gap = boundary_.gaps(u, g);
+  const Vector gap = gaps(u, g);
   const double u_scale = u.cwiseAbs().maxCoeff();
   for (Index k = 0; k < gap.size(); ++k)
     if (gap(k) < -kPenetrationTolerance * std::max(u_scale, std::abs(g(k))))
@@ -61,12 +67,22 @@ void Stepper::initialize(const Vector& u, const Vector& v, const Vector& F, doub
 }
 
 void Stepper::initialize(const Vector& u, const Vector& v, const ContactLoad& load, double t) {
+  begin(u, v, load, t, true);  // every scheme starts outside the obstacle
+}
+
+void Stepper::continue_from(const Vector& u, const Vector& v, const ContactLoad& load,
+                            double t) {
+  begin(u, v, load, t, exact_impenetrability());
+}
+
+void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, double t,
+                    bool check) {
   const Index n = problem_.size();
   check_vector(u, n, "u", "one entry per dof");
   check_vector(v, n, "v", "one entry per dof");
   check_load(load);
   if (!std::isfinite(t)) throw InputError("t: non-finite initial time");
-  if (slaves_contact_dofs()) check_penetration(u, load.obstacle.g, "initial");
+  if (check) check_penetration(u, load.obstacle.g, "initial");
   u_ = u;
   v_ = v;
   F_ = load.F;
@@ -95,7 +111,7 @@ void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const A
     throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
                      std::to_string(problem_.n_contact()) + " (one entry per contact node)");
   if (!std::isfinite(t)) throw InputError("t: non-finite time");
-  if (slaves_contact_dofs()) check_penetration(u, load.obstacle.g, "restored");
+  if (exact_impenetrability()) check_penetration(u, load.obstacle.g, "restored");
   restore_scheme_state(scheme_state);
   u_ = u;
   v_ = v;
@@ -120,13 +136,6 @@ void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
   a_ = std::move(a);
 }
 
-void Stepper::start(const ContactLoad& load) {
-  active_ = boundary_.enforce(u_, F_, obstacle_.g, {}).active;
-  rate_constraint(load, active_, h_);
-  boundary_.project(v_, active_, h_);
-  solve_acceleration(load);
-}
-
 StepReport Stepper::step(const ContactLoad& next) {
   if (!initialized_) throw InputError("step: the stepper has no initial state");
   check_load(next);
@@ -138,7 +147,6 @@ StepReport Stepper::step(const ContactLoad& next) {
     dg_ = next.obstacle.g - obstacle_.g;
   }
   const StepReport report = advance(next);
-  if (slaves_contact_dofs()) project_rates(next);
   F_ = next.F;
   obstacle_ = next.obstacle;
   t_ += dt_;
@@ -147,36 +155,6 @@ StepReport Stepper::step(const ContactLoad& next) {
     obstacle_work_ -= 0.5 * (dg_.dot(lambda_old_) + dg_.dot(lambda_new_));
   }
   return report;
-}
-
-void Stepper::project_rates(const ContactLoad& load) {
-  rate_constraint(load, active_, h_);
-  boundary_.project(v_, active_, h_);
-  acceleration_constraint(load, active_, h_);
-  boundary_.project(a_, active_, h_);
-}
-
-void Stepper::constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
-                         Vector& h) const {
-  const auto& c = problem_.contact_index();
-  h.resize(static_cast<Index>(c.size()));
-  for (std::size_t k = 0; k < c.size(); ++k)
-    h(k) = active[k] ? closed(k) : (open ? (*open)(c[k]) : 0.0);
-}
-
-void Stepper::displacement_constraint(const ContactLoad& load, const ActiveSet& active,
-                                      Vector& h) const {
-  constraint(load.obstacle.g, &load.F, active, h);
-}
-
-void Stepper::rate_constraint(const ContactLoad& load, const ActiveSet& active,
-                              Vector& h) const {
-  constraint(load.obstacle.g_rate, load.F_rate, active, h);
-}
-
-void Stepper::acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
-                                      Vector& h) const {
-  constraint(load.obstacle.g_accel, load.F_accel, active, h);
 }
 
 Energies Stepper::energies() const {

@@ -2,17 +2,19 @@
 // (u, v, a) in internal coordinates; only the interior parts are integrated,
 // the contact parts are always reconstructed from the nodal boundary relation.
 //
-// The base class runs the stepping protocol shared by every scheme (input
-// checks, the obstacle's work, the contact parts of v and a, the clock); a
-// scheme implements advance(), the update of u, a and the active set, and
-// the few hooks below. A new scheme (HHT-alpha, generalized-alpha) is one
+// The base class holds the state and runs the stepping protocol shared by
+// every scheme (input checks, the obstacle and its work, the clock, exact
+// restart); a scheme implements start(), advance() (the update of u, v, a
+// and the active set), reactions() and mass(). The NBM schemes, whose contact
+// dofs follow the nodal boundary relation, derive from NbmStepper
+// (nbm_stepper.hpp); Moreau-Jean, whose contact dofs are ordinary unknowns,
+// from Stepper directly. A new scheme (HHT-alpha, generalized-alpha) is one
 // subclass; state of its own that a restart needs goes through
 // scheme_state() / restore_scheme_state().
 #pragma once
 
 #include "active_set.hpp"
 #include "contact_problem.hpp"
-#include "nodal_boundary.hpp"
 
 namespace nbm {
 
@@ -68,6 +70,10 @@ class Stepper {
   void initialize(const Vector& u, const Vector& v, const ContactLoad& load, double t = 0);
   /// The same against the contact set's gaps, at rest.
   void initialize(const Vector& u, const Vector& v, const Vector& F, double t = 0);
+  /// initialize() from a state a run of the same scheme reached, e.g. under
+  /// another contact description (Solver::replace_contacts): its penetration
+  /// is checked only for the schemes that never penetrate.
+  void continue_from(const Vector& u, const Vector& v, const ContactLoad& load, double t);
   /// Advances by dt to the load and obstacle of `next` at the new time.
   StepReport step(const ContactLoad& next);
   /// Advances by dt under the load F at the new time, the obstacle staying
@@ -106,9 +112,9 @@ class Stepper {
     reactions(lambda);
     return lambda;
   }
-  virtual void reactions(Vector& lambda) const { boundary_.reactions(u_, F_, lambda); }
+  virtual void reactions(Vector& lambda) const = 0;
   /// g - u_n per contact node, against the current obstacle.
-  Vector gaps() const { return boundary_.gaps(u_, obstacle_.g); }
+  Vector gaps() const { return gaps(u_, obstacle_.g); }
   Energies energies() const;
   /// State of the scheme beyond (u, v, a, active set, load, obstacle) that an
   /// exact restart needs; empty by default.
@@ -117,36 +123,25 @@ class Stepper {
  protected:
   /// The mass matrix of the scheme (consistent or lumped), for energies.
   virtual const SparseMatrix& mass() const = 0;
-  /// Completes the initial state; by default the NBM one: u_C from the LCP,
-  /// v_C = A v_O + e', then solve_acceleration.
-  virtual void start(const ContactLoad& load);
-  /// Solves mass() a = F - K u + G^T mu, G a = h'' for the current active set
-  /// and the load and obstacle of `load` (the current ones).
-  virtual void solve_acceleration(const ContactLoad& load) = 0;
-  /// The scheme's step: u_, a_ and active_ at t + dt from the state at t and
-  /// `next`; v_ is left to the scheme too. The base class then completes it.
+  /// Completes the initial state (u_, v_, F_, obstacle_ and t_ set from the
+  /// arguments of initialize(); `load` holds the load's rates): a_, active_,
+  /// and whatever the scheme derives.
+  virtual void start(const ContactLoad& load) = 0;
+  /// The scheme's step: u_, v_, a_ and active_ at t + dt from the state at t
+  /// and `next`. The base class then advances the clock and the obstacle.
   virtual StepReport advance(const ContactLoad& next) = 0;
-  /// False for a scheme whose contact dofs are ordinary unknowns
-  /// (Moreau-Jean): no nodal boundary relation for its v_C, a_C, and its
-  /// positions may penetrate (restored states are not checked for it).
-  virtual bool slaves_contact_dofs() const { return true; }
+  /// True for schemes whose positions never penetrate the obstacle (the NBM
+  /// ones): their restored states are checked for penetration.
+  virtual bool exact_impenetrability() const = 0;
   /// Sets the scheme's own state (scheme_state()) at the end of restore();
   /// throws InputError if it does not fit. Default: only an empty one fits.
   virtual void restore_scheme_state(const Vector& state);
+  /// g - u_C per contact node for the displacement u and the gaps g.
+  Vector gaps(const Vector& u, const Vector& g) const;
   /// Throws InputError if u penetrates the obstacle at gaps g beyond round-off.
   void check_penetration(const Vector& u, const Vector& g, const char* what) const;
 
-  /// Right-hand sides of G x = h (method.md §4, §8) for the displacement, the
-  /// velocity and the acceleration: g, g', g'' on closed contacts, F_C and
-  /// its rates on open ones.
-  void displacement_constraint(const ContactLoad& load, const ActiveSet& active,
-                               Vector& h) const;
-  void rate_constraint(const ContactLoad& load, const ActiveSet& active, Vector& h) const;
-  void acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
-                               Vector& h) const;
-
   const ContactProblem& problem_;
-  NodalBoundary boundary_;
   double dt_;
   double t_ = 0;
   bool initialized_ = false;
@@ -155,17 +150,13 @@ class Stepper {
   ActiveSet active_;
 
  private:
+  void begin(const Vector& u, const Vector& v, const ContactLoad& load, double t, bool check);
   void check_load(const ContactLoad& load) const;
-  /// h_k = closed(k) on closed contacts, (*open)(c_k) (0 if null) on open ones.
-  void constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
-                  Vector& h) const;
-  /// v_C, a_C from the nodal boundary relation of the new active set.
-  void project_rates(const ContactLoad& load);
 
   double obstacle_work_ = 0;
-  // Workspaces of a step: constraint right-hand sides, the gap change and
-  // the reactions at both ends of a step of a moving obstacle.
-  Vector h_, dg_, lambda_old_, lambda_new_;
+  // Workspaces of a step: the gap change and the reactions at both ends of a
+  // step of a moving obstacle.
+  Vector dg_, lambda_old_, lambda_new_;
 };
 
 }  // namespace nbm
