@@ -10,14 +10,12 @@
 namespace nbm {
 namespace {
 
-// FreeFEM's default tgv is 1e30; any diagonal this large is a penalty.
-constexpr double kTgvThreshold = 1e29;
 // Assembly in double precision leaves K symmetric to a few ulps.
 constexpr double kSymmetryTolerance = 1e-10;
 
 // Sizes, finite entries and symmetry of A. Rows and columns of fixed dofs
 // are ignored by the solver, so they are left out of the symmetry test and
-// of its scale (FreeFEM's on() puts tgv = 1e30 on their diagonals).
+// of its scale (whatever a front end leaves in them, e.g. a penalty).
 void check_matrix(const SparseMatrix& A, Index n, const std::vector<char>& is_fixed,
                   const char* name) {
   const std::string id = name;
@@ -45,44 +43,7 @@ void check_matrix(const SparseMatrix& A, Index n, const std::vector<char>& is_fi
                          std::to_string(it.col()) + "); expected a symmetric matrix");
 }
 
-// FreeFEM's on() with tgv = -2 zeroes the row and column of a Dirichlet dof
-// of K and puts 1 on its diagonal: the dof is then a unit spring, not
-// clamped, and nothing in K alone says so. Such a row (only a unit diagonal)
-// next to a coupled row of M is reported unless the dof is listed as fixed.
-void check_decoupled_rows(const SparseMatrix& M, const SparseMatrix& K,
-                          const std::vector<char>& is_fixed) {
-  std::vector<int> k_entries(K.rows(), 0), m_off_diagonal(M.rows(), 0);
-  std::vector<double> k_diagonal(K.rows(), 0.0);
-  for (Index j = 0; j < K.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(K, j); it; ++it)
-      if (it.value() != 0.0) {
-        ++k_entries[it.row()];
-        if (it.row() == j) k_diagonal[j] = it.value();
-      }
-  for (Index j = 0; j < M.outerSize(); ++j)
-    for (SparseMatrix::InnerIterator it(M, j); it; ++it)
-      if (it.value() != 0.0 && it.row() != j) ++m_off_diagonal[it.row()];
-  for (Index i = 0; i < K.rows(); ++i)
-    if (!is_fixed[i] && k_entries[i] == 1 && k_diagonal[i] == 1.0 && m_off_diagonal[i] > 0)
-      throw InputError("K: row " + std::to_string(i) +
-                       " holds only a unit diagonal, as on() with tgv = -2 leaves a Dirichlet "
-                       "dof; such a dof is not held at zero: assemble K with the default tgv "
-                       "or list the dof in fixed=");
-}
-
 }  // namespace
-
-std::vector<Index> detect_tgv_dofs(const SparseMatrix& M, const SparseMatrix& K) {
-  std::vector<Index> fixed;
-  const Index n = std::min({M.rows(), M.cols(), K.rows(), K.cols()});
-  for (Index i = 0; i < n; ++i)
-    for (const double a : {K.coeff(i, i), M.coeff(i, i)})
-      if (std::isfinite(a) && std::abs(a) >= kTgvThreshold) {  // inf is an error, not a tgv
-        fixed.push_back(i);
-        break;
-      }
-  return fixed;
-}
 
 ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
                                ContactSet contacts, std::vector<Index> fixed,
@@ -99,7 +60,6 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   }
   check_matrix(K, n_dofs_, is_fixed, "K");
   check_matrix(M, n_dofs_, is_fixed, "M");
-  check_decoupled_rows(M, K, is_fixed);
 
   // Internal numbering: free dofs in their original order.
   internal_.assign(n_dofs_, -1);

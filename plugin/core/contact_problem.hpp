@@ -10,14 +10,10 @@
 
 namespace nbm {
 
-/// Dofs carrying FreeFEM's default Dirichlet penalty (`on(...)` with
-/// tgv = 1e30) on the diagonal of K or M: diagonal entries >= 1e29.
-std::vector<Index> detect_tgv_dofs(const SparseMatrix& M, const SparseMatrix& K);
-
 class ContactProblem {
  public:
   /// M, K: symmetric, n x n (full storage). `fixed`: dofs held at zero; their
-  /// rows and columns are ignored (so matrices assembled with on() are fine).
+  /// rows and columns are ignored (whatever they hold, e.g. a penalty).
   /// With `massless_positions` (one row per user dof: its node's
   /// coordinates), the mass of the contact dofs is redistributed
   /// (mass_redistribution.hpp): M_CC = 0, M_CO = 0, the massless boundary of

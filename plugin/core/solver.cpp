@@ -247,7 +247,6 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
                      std::to_string(Ks.cols()));
   // Range errors of `fixed` are reported by ContactSet.
   std::vector<Index> fixed = to_index(options.fixed);
-  for (Index f : detect_tgv_dofs(Ms, Ks)) fixed.push_back(f);
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
   impl_->fixed.assign(fixed.begin(), fixed.end());

@@ -29,7 +29,13 @@ struct SolverOptions {
   /// Newmark parameters, scheme "newmark" only (default 1/4, 1/2: average
   /// acceleration); setting them with scheme "explicit" is an error.
   std::optional<double> beta, gamma;
-  std::vector<long> fixed;          ///< Dirichlet dofs (held at zero)
+  /// Dirichlet dofs (held at zero; any order, repeats allowed). They are the
+  /// only Dirichlet conditions the core knows: their rows and columns of M
+  /// and K are ignored. A front end translates its own conventions into this
+  /// list (the FreeFEM binding adds the dofs of on()'s tgv penalty,
+  /// plugin/freefem/dirichlet.hpp); a huge diagonal on a dof not listed here
+  /// is just a stiff (or heavy) entry.
+  std::vector<long> fixed;
   /// "consistent" (the paper's NBM: contact nodes keep their mass) or
   /// "redistributed" (massless boundary, method.md §4: energy conserving;
   /// implicit scheme only). Redistribution needs `positions`: for every dof
@@ -66,7 +72,7 @@ class Solver {
   long n_dofs() const;
   long n_contact() const;
   const SolverOptions& options() const;
-  /// Fixed dofs: the `fixed` option plus those detected from tgv = 1e30.
+  /// Fixed dofs: the `fixed` option, sorted, without repeats.
   std::vector<long> fixed_dofs() const;
 
   /// The rigid obstacle from the next initialize(), step() or restart() on

@@ -19,6 +19,7 @@
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
 #include "binding.hpp"
+#include "dirichlet.hpp"
 
 using namespace nbm_binding;
 
@@ -56,6 +57,8 @@ class NbmConstruct : public E_F0mps {
     contact.gaps = vector_of<double>(GetAny<KN<double>*>((*gaps)(s)), "NBM", "gaps");
     const nbm::CooMatrix Mc = coo_of(GetAny<Matrice_Creuse<double>*>((*M)(s)), "M");
     const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*K)(s)), "K");
+    // on()'s conventions: the dofs with a tgv penalty join fixed=.
+    opt.fixed = guarded("NBM", [&] { return dirichlet_dofs(Mc, Kc, std::move(opt.fixed)); });
     nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
     h->destroy();  // the old solver and any orbit computed on it
     h->solver = solver;

@@ -91,15 +91,6 @@ TEST(ContactProblem, ContactBlockAndConstraintBasis) {
   }
 }
 
-TEST(ContactProblem, DetectsTgvDiagonals) {
-  const nbm_test::Bar b;
-  auto a = assemble(b);
-  a.K.coeffRef(3, 3) = 1e30;
-  a.M.coeffRef(7, 7) = -1e30;
-  a.K.coeffRef(9, 9) = 9e28;  // large, but below FreeFEM's tgv
-  EXPECT_EQ(nbm::detect_tgv_dofs(a.M, a.K), (std::vector<Index>{3, 7}));
-}
-
 TEST(ContactProblem, MatrixSizeMismatchNamesM) {
   const auto a = assemble(nbm_test::Bar{});
   const auto small = assemble(nbm_test::Bar{1, 1, 100, 10, 5});

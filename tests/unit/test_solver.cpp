@@ -1,5 +1,5 @@
 // nbm::Solver, the facade on user dofs and coordinate-form matrices: storage
-// variants, Dirichlet dofs by option or by tgv penalty, diagnostics, and the
+// variants, Dirichlet dofs (the fixed option), diagnostics, and the
 // error messages that name the faulty argument.
 #include <gtest/gtest.h>
 
@@ -105,23 +105,24 @@ struct Clamped {
   nbm::ContactDescription c = nbm_test::ground_contact(0.02);
 };
 
-TEST(SolverFixedDofs, TgvDiagonalsGiveTheSameTrajectoryAsTheFixedOption) {
+TEST(SolverFixedDofs, RowsAndColumnsOfFixedDofsAreIgnored) {
   Clamped cl;
   const int N = cl.b.N;
   SolverOptions fixed = newmark();
-  fixed.fixed = {N};
+  fixed.fixed = {N, N};  // repeats allowed
   const auto ref = trajectory(nbm_test::to_coo(cl.a.M), nbm_test::to_coo(cl.a.K), cl.F, cl.c,
                               fixed, 300, 0.0);
   for (int both : {0, 1}) {
-    // FreeFEM's on(): the diagonal of K (and of M if its varf has on()) set to 1e30.
+    // Whatever a front end leaves in the rows of a fixed dof (FreeFEM's on():
+    // 1e30 on the diagonal of K, and of M if its varf has on()) is ignored.
     nbm_test::Sparse K = cl.a.K, M = cl.a.M;
     K.coeffRef(N, N) = 1e30;
     if (both) M.coeffRef(N, N) = 1e30;
-    Solver s(nbm_test::to_coo(M), nbm_test::to_coo(K), cl.c, newmark());
+    Solver s(nbm_test::to_coo(M), nbm_test::to_coo(K), cl.c, fixed);
     EXPECT_EQ(s.fixed_dofs(), std::vector<long>{N});
-    const auto tgv = trajectory(nbm_test::to_coo(M), nbm_test::to_coo(K), cl.F, cl.c, newmark(),
-                                300, 0.0);
-    expect_same_trajectory(ref, tgv, 1e-15);
+    const auto penalised = trajectory(nbm_test::to_coo(M), nbm_test::to_coo(K), cl.F, cl.c, fixed,
+                                      300, 0.0);
+    expect_same_trajectory(ref, penalised, 1e-15);
   }
   // The clamped end stays put, the hanging bar reaches the ground (gap 0.02
   // is less than the static elongation rho g L^2 / (2E) = 0.05).
@@ -131,6 +132,16 @@ TEST(SolverFixedDofs, TgvDiagonalsGiveTheSameTrajectoryAsTheFixedOption) {
     lowest = std::min(lowest, u[0]);
   }
   EXPECT_NEAR(lowest, -0.02, 1e-12);
+}
+
+TEST(SolverFixedDofs, AHugeDiagonalNotListedAsFixedIsAStiffEntry) {
+  // The core knows only the `fixed` option (the FreeFEM binding turns on()'s
+  // tgv into it): a 1e30 diagonal is a stiff spring, not a Dirichlet dof.
+  Clamped cl;
+  nbm_test::Sparse K = cl.a.K;
+  K.coeffRef(cl.b.N, cl.b.N) = 1e30;
+  Solver s(nbm_test::to_coo(cl.a.M), nbm_test::to_coo(K), cl.c, newmark());
+  EXPECT_TRUE(s.fixed_dofs().empty());
 }
 
 TEST(SolverFixedDofs, InitializeZeroesFixedDofsAndSlavesContactDofs) {
@@ -297,24 +308,24 @@ TEST_F(SolverErrors, MassTreatment) {
   expect_construction_error(o, {"positions", "consistent"});
 }
 
-TEST_F(SolverErrors, DirichletRowOfTgvMinus2IsNotMistakenForAClampedDof) {
-  // on(..., tgv = -2) at the top end: row and column N of K zeroed, 1 on the
-  // diagonal. The dof would be a unit spring, not clamped.
+TEST_F(SolverErrors, ADecoupledUnitRowIsAUnitSpring) {
+  // Row and column N of K zeroed, 1 on the diagonal (what FreeFEM's on() with
+  // tgv = -2 leaves): to the core a dof on a unit spring, accepted with or
+  // without being fixed. The binding diagnoses tgv = -2 (dirichlet.hpp).
   CooMatrix K_d = K;
   for (std::size_t k = 0; k < K_d.value.size(); ++k) {
     if (K_d.i[k] == b.N || K_d.j[k] == b.N) K_d.value[k] = 0;
     if (K_d.i[k] == b.N && K_d.j[k] == b.N) K_d.value[k] = 1;
   }
-  expect_throw_with<nbm::InputError>([&] { Solver(M, K_d, c, newmark()); },
-                                     {"K: row " + std::to_string(b.N), "tgv = -2", "fixed="});
+  EXPECT_NO_THROW(Solver(M, K_d, c, newmark()));
   SolverOptions o = newmark();
-  o.fixed = {b.N};  // declared fixed: the row is ignored, as documented
+  o.fixed = {b.N};
   EXPECT_NO_THROW(Solver(M, K_d, c, o));
 }
 
 TEST_F(SolverErrors, NonSquareMatricesAreReportedBeforeAnyDiagonalIsRead) {
-  // M and K both 2n x n (a test space of another size): reading their
-  // diagonals for tgv penalties must not run past the columns.
+  // M and K both 2n x n (a test space of another size): reported as such,
+  // nothing read past the columns.
   CooMatrix M2 = M, K2 = K;
   M2.rows = K2.rows = 2 * M.rows;
   expect_throw_with<nbm::InputError>([&] { Solver(M2, K2, c, newmark()); }, {"not square"});
@@ -351,8 +362,8 @@ TEST_F(SolverErrors, MatrixEntries) {
 }
 
 TEST_F(SolverErrors, InfiniteDiagonalIsNonFiniteNotAPenalty) {
-  // An infinite diagonal is not FreeFEM's tgv = 1e30: it must be reported as
-  // a non-finite entry of K, also on the contact dof (not as "fixed dof").
+  // An infinite diagonal is not a penalty: it must be reported as a
+  // non-finite entry of K, also on the contact dof (not as "fixed dof").
   for (long d : {5L, 0L}) {
     CooMatrix K_inf = K;
     for (std::size_t k = 0; k < K_inf.value.size(); ++k)
@@ -363,15 +374,18 @@ TEST_F(SolverErrors, InfiniteDiagonalIsNonFiniteNotAPenalty) {
   }
 }
 
-TEST_F(SolverErrors, AsymmetryIsDetectedWhenTgvPenaltiesArePresent) {
-  // With on() the diagonal holds 1e30; the symmetry test of the remaining
-  // (free) part must not be scaled by it. Here K(3,4) is 1% off K(4,3).
+TEST_F(SolverErrors, AsymmetryIsDetectedNextToPenaltiesOnFixedDofs) {
+  // A fixed dof's diagonal holding a penalty (1e30, as on() leaves it): the
+  // symmetry test of the remaining (free) part must not be scaled by it.
+  // Here K(3,4) is 1% off K(4,3).
   CooMatrix K_ns = K;
   for (std::size_t k = 0; k < K_ns.value.size(); ++k) {
     if (K_ns.i[k] == 3 && K_ns.j[k] == 4) K_ns.value[k] *= 1.01;
     if (K_ns.i[k] == b.N && K_ns.j[k] == b.N) K_ns.value[k] = 1e30;
   }
-  expect_throw_with<nbm::InputError>([&] { Solver(M, K_ns, c, newmark()); }, {"K", "symmetric"});
+  SolverOptions o = newmark();
+  o.fixed = {b.N};
+  expect_throw_with<nbm::InputError>([&] { Solver(M, K_ns, c, o); }, {"K", "symmetric"});
 }
 
 TEST_F(SolverErrors, ContactDescription) {

@@ -27,6 +27,7 @@ nbm_bad_valid(valid-redistributed ${NBM_BAD_DIR}/cases.edp -case valid-redistrib
 nbm_bad_valid(valid-moreau-jean ${NBM_BAD_DIR}/cases.edp -case valid-moreau-jean)
 nbm_bad_valid(valid-restart ${NBM_BAD_DIR}/cases.edp -case valid-restart)
 nbm_bad_valid(valid-replace ${NBM_BAD_DIR}/cases.edp -case valid-replace)
+nbm_bad_valid(valid-tgv ${NBM_BAD_DIR}/cases.edp -case valid-tgv)
 nbm_bad_valid(plane-valid-newmark ${NBM_BAD_DIR}/plane.edp -case valid-newmark)
 nbm_bad_valid(plane-valid-explicit ${NBM_BAD_DIR}/plane.edp -case valid-explicit)
 
