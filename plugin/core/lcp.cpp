@@ -92,7 +92,6 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
   for (long p = 0; p < max_pivots; ++p) {
     free_indices(r.active, F);
     ++r.pivots;
-    double kappa = 1;  // estimate of cond(A_FF): the forward error of z_F grows with it
     if (F.empty()) {
       r.z.setZero();
     } else {
@@ -101,8 +100,6 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
         throw NumericalError("LCP: principal block of size " + std::to_string(F.size()) +
                              " is not positive definite (the matrix is not a P-matrix)");
       solve_principal(*llt, q, F, work, r.z);
-      const auto d = llt->matrixLLT().diagonal().cwiseAbs();
-      kappa = std::pow(d.maxCoeff() / d.minCoeff(), 2);
     }
     r.w = q;
     r.w.noalias() += A * r.z;
@@ -110,22 +107,14 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
     if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
       throw NumericalError("LCP: the solution overflows; the data are too badly scaled");
 
-    // Round-off tolerances. z_F comes from a solve: its error is relative to
-    // |z| as a whole. w_i = q_i + (A z)_i inherits that error through A,
-    // amplified by the conditioning of the solve (kappa |A| |z|), plus its
-    // own term q_i: judged on its own row, so that one huge entry of q (the
-    // gap of a node far from the obstacle, in the massless step's LCP) does
-    // not loosen the sign checks of the other rows. (Without kappa, the
-    // checks are too tight on ill-conditioned blocks and the pivoting cycles:
-    // the fuzz corpus keeps such cases, lcp-row-tolerance-cycling*.)
+    // Round-off tolerances scale with the magnitudes of the current solution.
     const double z_scale = r.z.cwiseAbs().maxCoeff();
     const double tol_z = 8 * n * kEps * z_scale;
+    const double tol_w = 8 * n * kEps * (q.cwiseAbs().maxCoeff() + a_max * z_scale);
     infeasible.clear();
-    for (Index i = 0; i < n; ++i) {
-      const double tol_w = 8 * n * kEps * (std::abs(q(i)) + kappa * a_max * z_scale);
+    for (Index i = 0; i < n; ++i)
       if ((!r.active[i] && r.z(i) < -tol_z) || (r.active[i] && r.w(i) < -tol_w))
         infeasible.push_back(i);
-    }
 
     if (infeasible.empty()) {
       // Feasible complementary basis: this is the unique solution. Remove the
