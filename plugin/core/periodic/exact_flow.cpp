@@ -108,7 +108,8 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     if (switches > kMaxSwitches)
       throw NumericalError("exact flow: more than " + std::to_string(kMaxSwitches) +
                            " switches (Zeno behaviour?)");
-    const Region& region = field_.region(out.active);
+    const auto held = field_.region(out.active);
+    const Region& region = *held;
     const RegionFlow piece(region, out.u, out.v);
     const auto crossing = first_crossing(piece.switching(), 0, T - t);
     const double tau = crossing ? crossing->t : T - t;
@@ -127,7 +128,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     if (sensitivity) {
       // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f-) with
       // n = (H_j, 0), f = (v, a); only the acceleration jumps.
-      const Vector jump = field_.region(next).acceleration(out.u) - region.acceleration(out.u);
+      const Vector jump = field_.region(next)->acceleration(out.u) - region.acceleration(out.u);
       const double rate = region.H.row(crossing->row).dot(out.v);
       if (jump.norm() > 0 && rate != 0)
         out.monodromy.bottomRows(n) +=
@@ -136,7 +137,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     out.switches.push_back({t, crossing->row, next});
     out.active = next;
   }
-  out.a = field_.region(out.active).acceleration(out.u);
+  out.a = field_.region(out.active)->acceleration(out.u);
   return out;
 }
 

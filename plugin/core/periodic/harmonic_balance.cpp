@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 #include <string>
 
-#include <Eigen/LU>
-#include <Eigen/QR>
 
 #include "errors.hpp"
 
@@ -94,7 +93,8 @@ RegionWeights exact_weights(const ReducedField& field, const Matrix& C, const Ba
   for (long pieces = 0; tau < 2 * M_PI; ++pieces) {
     if (pieces > 100'000)
       throw NumericalError("harmonic balance: more than 100000 contact switches per period");
-    const Region& r = field.region(S);
+    const auto r_held = field.region(S);
+    const Region& r = *r_held;
     // Switching functions along the series: h(tau) = d + H u(tau).
     TrigSum h;
     h.c = r.d + r.H * C.col(0);
@@ -144,13 +144,14 @@ Balance residual(const ReducedField& field, const RegionWeights& w, const Matrix
   Balance b{Matrix::Zero(C.rows(), w.begin()->second.Psi.rows()), 0};
   Matrix stiff = b.R, inertia = b.R, load = b.R;
   for (const auto& [S, x] : w) {
-    const Region& r = field.region(S);
+    const auto r_held = field.region(S);
+    const Region& r = *r_held;
     stiff += r.K * C * x.Psi.transpose();
     inertia += omega * omega * (r.M * CD) * x.Psi.transpose();
     load += r.f * x.phi.transpose();
   }
   b.R = stiff - inertia - load;
-  b.scale = std::max({stiff.norm(), inertia.norm(), load.norm(), 1e-300});
+  b.scale = std::max({stiff.norm(), inertia.norm(), load.norm(), periodic_tiny});
   return b;
 }
 
@@ -200,16 +201,10 @@ HarmonicBalanceResult harmonic_balance(const ReducedField& field, const Vector& 
   double omega = 2 * M_PI / T;
 
   HarmonicBalanceResult out;
-  const double target = [&] {
-    if (!std::isnan(o.amplitude)) return o.amplitude;
-    switch (o.kind) {
-      case ShootingOptions::Amplitude::displacement: return u0(o.probe);
-      case ShootingOptions::Amplitude::energy: return field.energies(u0, v0)(3);
-      case ShootingOptions::Amplitude::period: break;
-    }
-    return T;
-  }();
-  const double amp_scale = std::max(std::abs(target), 1e-300);
+  const double target = std::isnan(o.amplitude)
+                            ? amplitude_value(field, o.kind, o.probe, u0, v0, T)
+                            : o.amplitude;
+  const double amp_scale = std::max(std::abs(target), periodic_tiny);
 
   for (;;) {
     const Index nb = basis.size(), N = n * nb;
@@ -220,40 +215,14 @@ HarmonicBalanceResult harmonic_balance(const ReducedField& field, const Vector& 
                  : sampled_weights(field, C, basis, test,
                                    o.aft_samples > 0 ? o.aft_samples : 32 * test.H);
     };
-    // Equations: the Galerkin residual, the phase, the amplitude condition.
-    struct Evaluation {
-      Vector E;
-      double merit = std::numeric_limits<double>::infinity();
-      RegionWeights w;
-    };
-    auto evaluate = [&](const Matrix& C, double omega) {
-      Evaluation e;
-      if (!(omega > 0) || !C.allFinite()) return e;
-      e.w = weights(C, basis);
-      const Balance b = residual(field, e.w, C, basis, omega);
-      const Vector u = series(C, basis, 0), v = omega * series(C, basis, 0, true);
-      double amp = 0;
-      switch (o.kind) {
-        case ShootingOptions::Amplitude::displacement: amp = u(o.probe); break;
-        case ShootingOptions::Amplitude::energy: amp = field.energies(u, v)(3); break;
-        case ShootingOptions::Amplitude::period: amp = 2 * M_PI / omega; break;
-      }
-      amp -= target;
-      const double vs = std::max(u.norm(), C.norm()) * omega;
-      e.E.resize(N + (phase ? 2 : 1));
-      e.E.head(N) = Eigen::Map<const Vector>(b.R.data(), N) / b.scale;
-      if (phase) e.E(N) = v(o.probe) / std::max(vs, 1e-300);
-      e.E(e.E.size() - 1) = amp / amp_scale;
-      e.merit = e.E.norm();
-      return e;
-    };
     // Jacobian of the scaled equations with the switching times frozen.
-    auto jacobian = [&](const Matrix& C, double omega, const RegionWeights& w, double scale) {
+    auto jacobian_of = [&](const Matrix& C, double omega, const RegionWeights& w, double scale) {
       Matrix J = Matrix::Zero(N + (phase ? 2 : 1), N + 1);
       Vector D(nb);
       for (Index k = 0; k < nb; ++k) D(k) = std::pow(basis.harmonic(k), 2);
       for (const auto& [S, x] : w) {
-        const Region& r = field.region(S);
+        const auto r_held = field.region(S);
+        const Region& r = *r_held;
         for (Index k = 0; k < nb; ++k) {
           const Matrix block = (r.K - (omega * omega * D(k)) * r.M) / scale;
           for (Index j = 0; j < nb; ++j)
@@ -264,68 +233,74 @@ HarmonicBalanceResult harmonic_balance(const ReducedField& field, const Vector& 
       }
       const Vector u = series(C, basis, 0), du = series(C, basis, 0, true);
       if (phase) {
-        const double vs = std::max(std::max(u.norm(), C.norm()) * omega, 1e-300);
+        const double vs = std::max(std::max(u.norm(), C.norm()) * omega, periodic_tiny);
         for (Index k = 0; k < nb; ++k) J(N, k * n + o.probe) = omega * basis.slope(k, 0) / vs;
         J(N, N) = du(o.probe) / vs;
       }
       const Index a = J.rows() - 1;
-      switch (o.kind) {
-        case ShootingOptions::Amplitude::displacement:
-          for (Index k = 0; k < nb; ++k) J(a, k * n + o.probe) = basis.value(k, 0) / amp_scale;
-          break;
-        case ShootingOptions::Amplitude::energy: {
-          const Region& r = field.region(field.active_set(u));
-          const Vector gu = r.K * u - r.f, gv = r.M * (omega * du);
-          for (Index k = 0; k < nb; ++k)
-            J.block(a, k * n, 1, n) =
-                (basis.value(k, 0) * gu + omega * basis.slope(k, 0) * gv).transpose() / amp_scale;
-          J(a, N) = gv.dot(du) / amp_scale;
-          break;
-        }
-        case ShootingOptions::Amplitude::period:
-          J(a, N) = -2 * M_PI / (omega * omega) / amp_scale;
-          break;
-      }
+      // The amplitude condition's gradient in (u, v, T) (shooting.hpp), with
+      // u = sum_k C_k psi_k(0), v = omega sum_k C_k psi_k'(0), T = 2 pi / omega.
+      const Vector g = amplitude_gradient(field, o.kind, o.probe, u, omega * du);
+      const auto gu = g.head(n), gv = g.segment(n, n);
+      for (Index k = 0; k < nb; ++k)
+        J.block(a, k * n, 1, n) =
+            (basis.value(k, 0) * gu + omega * basis.slope(k, 0) * gv).transpose() / amp_scale;
+      J(a, N) = (gv.dot(du) + g(2 * n) * (-2 * M_PI / (omega * omega))) / amp_scale;
       return J;
     };
 
-    Evaluation e = evaluate(C, omega);
-    int it = 0;
-    for (;; ++it) {
-      out.orbit.residual_history.push_back(e.merit);
-      if (e.merit <= o.tolerance) break;
-      if (it >= o.max_iterations || !std::isfinite(e.merit))
-        throw NumericalError("harmonic balance: no convergence in " + std::to_string(it) +
-                             " Newton iterations at H = " + std::to_string(basis.H) +
-                             " (residual " + std::to_string(e.merit) + ")");
-      const Balance b = residual(field, e.w, C, basis, omega);
-      const Matrix J = jacobian(C, omega, e.w, b.scale);
-      const Vector step = phase ? Vector(J.householderQr().solve(-e.E))
-                                : Vector(J.partialPivLu().solve(-e.E));
-      // Backtracking, with at most a 20% change of omega per step.
-      double damping = std::min(1.0, 0.2 * omega / std::max(std::abs(step(N)), 1e-300));
-      auto trial_at = [&](double s) {
-        Matrix Ct = C + s * Eigen::Map<const Matrix>(step.data(), n, nb);
-        return std::pair{Ct, omega + s * step(N)};
-      };
-      auto [Ct, wt] = trial_at(damping);
-      Evaluation t = evaluate(Ct, wt);
-      while (!(t.merit < e.merit) && damping > 1.0 / 1024) {
-        damping /= 2;
-        std::tie(Ct, wt) = trial_at(damping);
-        t = evaluate(Ct, wt);
-      }
-      C = Ct, omega = wt, e = std::move(t);
-    }
-    out.orbit.iterations += it;
-    out.residual = e.merit;
+    // Equations: the Galerkin residual, the phase, the amplitude condition,
+    // of the unknowns y = (C column by column, omega); merit = size = |E|.
+    // The region weights of the last evaluation are kept: the Jacobian is
+    // asked for at the accepted trial point.
+    Vector last_y;
+    RegionWeights last_w;
+    auto evaluate = [&](const Vector& y, bool jacobian) {
+      GaussNewtonEvaluation e;
+      const Matrix C = Eigen::Map<const Matrix>(y.data(), n, nb);
+      const double omega = y(N);
+      if (!(omega > 0) || !C.allFinite()) return e;
+      RegionWeights w = last_y.size() == y.size() && last_y == y ? std::move(last_w)
+                                                                 : weights(C, basis);
+      const Balance b = residual(field, w, C, basis, omega);
+      const Vector u = series(C, basis, 0), v = omega * series(C, basis, 0, true);
+      const double amp =
+          amplitude_value(field, o.kind, o.probe, u, v, 2 * M_PI / omega) - target;
+      const double vs = std::max(u.norm(), C.norm()) * omega;
+      e.R.resize(N + (phase ? 2 : 1));
+      e.R.head(N) = Eigen::Map<const Vector>(b.R.data(), N) / b.scale;
+      if (phase) e.R(N) = v(o.probe) / std::max(vs, periodic_tiny);
+      e.R(e.R.size() - 1) = amp / amp_scale;
+      e.merit = e.size = e.R.norm();
+      if (jacobian) e.J = jacobian_of(C, omega, w, b.scale);
+      last_y = y, last_w = std::move(w);
+      return e;
+    };
+
+    // Damped Gauss-Newton (gauss_newton.hpp), the trust region on omega.
+    GaussNewtonOptions gn;
+    gn.period_index = N;
+    gn.tolerance = o.tolerance;
+    gn.max_iterations = o.max_iterations;
+    gn.solver = GaussNewtonOptions::Solver::householder;
+    gn.name = "harmonic balance";
+    gn.context = "at H = " + std::to_string(basis.H) + " ";
+    Vector y(N + 1);
+    y << Eigen::Map<const Vector>(C.data(), N), omega;
+    const GaussNewtonResult solution = gauss_newton(evaluate, std::move(y), gn);
+    C = Eigen::Map<const Matrix>(solution.y.data(), n, nb);
+    omega = solution.y(N);
+    out.orbit.residual_history.insert(out.orbit.residual_history.end(),
+                                      solution.merits.begin(), solution.merits.end());
+    out.orbit.iterations += solution.iterations;
+    out.residual = solution.last.merit;
 
     // Truncation: the residual of this solution on harmonics H+1 .. 2H.
     const Basis wide{2 * basis.H, basis.cosine_only};
     const Balance high = residual(field, weights(C, wide), C, basis, omega);
     const Index first = basis.size();
     out.truncation =
-        high.R.rightCols(wide.size() - first).norm() / std::max(high.scale, 1e-300);
+        high.R.rightCols(wide.size() - first).norm() / std::max(high.scale, periodic_tiny);
     out.harmonics_tried.push_back(basis.H);
     if (!o.adaptive || out.truncation <= o.truncation_tolerance ||
         2 * basis.H > o.max_harmonics)

@@ -36,7 +36,7 @@ struct HarmonicBalanceOptions {
   ShootingOptions::Amplitude kind = ShootingOptions::Amplitude::displacement;
   double amplitude = std::numeric_limits<double>::quiet_NaN();  ///< NaN: from the guess
   double tolerance = 1e-12;  ///< on the scaled Galerkin residual
-  int max_iterations = 50;
+  int max_iterations = periodic_max_iterations;
   /// Adaptive number of harmonics: H is doubled (up to max_harmonics) until
   /// the truncation estimate is below truncation_tolerance.
   bool adaptive = false;

@@ -111,7 +111,8 @@ double ReducedBasis::full_residual(const Vector& q, const Vector& a) const {
   // Full internal state x = (V q, u_C) and its acceleration, u_C from the
   // reduced model's nodal boundary relation (the full model's on range(V)).
   const ReducedField& f = *field_;
-  const Region& reg = f.region(f.active_set(q));
+  const auto reg_held = f.region(f.active_set(q));
+  const Region& reg = *reg_held;
   const Index N = problem_.size();
   Vector x(N), xa(N);
   x(interior_) = V_ * q;

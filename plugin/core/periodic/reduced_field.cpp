@@ -65,13 +65,38 @@ ReducedField ReducedField::from(const ContactProblem& problem, const Vector& F) 
                       problem.gaps());
 }
 
-const Region& ReducedField::region(const ActiveSet& active) const {
+std::size_t ReducedField::bytes_of(const Region& r) {
+  const Index doubles = r.A.size() + r.e.size() + r.M.size() + r.K.size() + r.f.size() +
+                        r.H.size() + r.d.size() + r.modes.size() + r.omega2.size() +
+                        r.mass.matrixLLT().size();
+  return sizeof(Region) + sizeof(double) * static_cast<std::size_t>(doubles);
+}
+
+void ReducedField::evict_down_to(std::size_t bytes) const {
+  while (cache_bytes_ > bytes && !regions_.empty()) {
+    auto oldest = regions_.begin();
+    for (auto it = regions_.begin(); it != regions_.end(); ++it)
+      if (it->second.last_use < oldest->second.last_use) oldest = it;
+    cache_bytes_ -= oldest->second.bytes;
+    regions_.erase(oldest);
+  }
+}
+
+void ReducedField::set_region_cache_budget(std::size_t bytes) {
+  cache_budget_ = bytes;
+  evict_down_to(bytes);
+}
+
+std::shared_ptr<const Region> ReducedField::region(const ActiveSet& active) const {
   auto it = regions_.find(active);
-  if (it != regions_.end()) return *it->second;
+  if (it != regions_.end()) {
+    it->second.last_use = ++cache_clock_;
+    return it->second.region;
+  }
   if (active.size() != contact_.size())
     throw InputError("reduced field: active set of the wrong size");
 
-  auto r = std::make_unique<Region>();
+  auto r = std::make_shared<Region>();
   r->active = active;
   const Index n = size(), nc = n_contact();
   const auto open = select(contact_, active, false), closed = select(contact_, active, true);
@@ -133,7 +158,13 @@ const Region& ReducedField::region(const ActiveSet& active) const {
     if (r->omega2(k) < 1e-13 * top) r->omega2(k) = 0;
   }
   r->modes = eig.eigenvectors();
-  return *regions_.emplace(active, std::move(r)).first->second;
+  // Cache it within the budget, the least recently used regions first out.
+  const std::size_t bytes = bytes_of(*r);
+  if (bytes > cache_budget_) return r;
+  evict_down_to(cache_budget_ - bytes);
+  regions_.emplace(active, CachedRegion{r, bytes, ++cache_clock_});
+  cache_bytes_ += bytes;
+  return r;
 }
 
 ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Vector& v,
@@ -147,7 +178,8 @@ ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Ve
   for (Index j = 0; j < h.size(); ++j)
     if (j != row && std::abs(h(j)) <= kZeroTolerance * scale && rate(j) < 0) next[j] = !next[j];
   // The new region must contain u and be entered, not left, along v.
-  const Region& after = region(next);
+  const auto after_region = region(next);
+  const Region& after = *after_region;
   const Vector h2 = after.H * u + after.d, rate2 = after.H * v;
   const double scale2 = (after.H.cwiseAbs() * u.cwiseAbs() + after.d.cwiseAbs()).maxCoeff();
   bool consistent = true;
@@ -172,11 +204,12 @@ ActiveSet ReducedField::active_set(const Vector& u) const {
 }
 
 Vector ReducedField::acceleration(const Vector& u) const {
-  return region(active_set(u)).acceleration(u);
+  return region(active_set(u))->acceleration(u);
 }
 
 Vector ReducedField::expand(const Vector& u) const {
-  const Region& r = region(active_set(u));
+  const auto r_held = region(active_set(u));
+  const Region& r = *r_held;
   Vector x(n_internal());
   x(interior_) = u;
   x(contact_) = r.A * u + r.e;
@@ -184,7 +217,8 @@ Vector ReducedField::expand(const Vector& u) const {
 }
 
 Vector ReducedField::expand_velocity(const Vector& u, const Vector& v) const {
-  const Region& r = region(active_set(u));
+  const auto r_held = region(active_set(u));
+  const Region& r = *r_held;
   Vector x(n_internal());
   x(interior_) = v;
   x(contact_) = r.A * v;

@@ -17,6 +17,8 @@
 // to a few thousand interior dofs.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <vector>
@@ -67,8 +69,23 @@ class ReducedField {
   const std::vector<Index>& contact() const { return contact_; }
   const Vector& gaps() const { return g_; }
 
-  /// The region of an active set (built on first use, then cached).
-  const Region& region(const ActiveSet& active) const;
+  /// The region of an active set, built on first use, then cached while the
+  /// cached regions fit in region_cache_budget() bytes (their dense
+  /// matrices): building a region that does not fit evicts the least
+  /// recently used ones (a region larger than the whole budget is not
+  /// cached). The returned pointer keeps the region alive after eviction:
+  /// hold it, not a reference into it, across further calls.
+  std::shared_ptr<const Region> region(const ActiveSet& active) const;
+  /// Default budget of the region cache: 256 MiB, e.g. 8 regions of
+  /// n = 2000 interior dofs (four dense n x n matrices, 32 MB each).
+  static constexpr std::size_t default_region_cache_budget = std::size_t{256} << 20;
+  std::size_t region_cache_budget() const { return cache_budget_; }
+  /// Sets the budget, evicting least recently used regions down to it.
+  void set_region_cache_budget(std::size_t bytes);
+  std::size_t region_cache_bytes() const { return cache_bytes_; }  ///< in use
+  std::size_t region_cache_size() const { return regions_.size(); }  ///< regions cached
+  /// Bytes of a region's dense matrices and vectors (what the budget counts).
+  static std::size_t bytes_of(const Region& r);
   /// The active set of the nodal boundary relation (LCP) at u_O.
   ActiveSet active_set(const Vector& u) const;
   /// The active set entered when the switching function `row` of the region
@@ -101,7 +118,15 @@ class ReducedField {
   Vector F_, g_;
   std::vector<Index> interior_, contact_;
   bool massless_ = false;
-  mutable std::map<ActiveSet, std::unique_ptr<Region>> regions_;
+  struct CachedRegion {
+    std::shared_ptr<const Region> region;
+    std::size_t bytes = 0;
+    std::uint64_t last_use = 0;
+  };
+  mutable std::map<ActiveSet, CachedRegion> regions_;
+  mutable std::size_t cache_budget_ = default_region_cache_budget, cache_bytes_ = 0;
+  mutable std::uint64_t cache_clock_ = 0;
+  void evict_down_to(std::size_t bytes) const;
 };
 
 }  // namespace nbm

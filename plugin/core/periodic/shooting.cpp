@@ -4,7 +4,6 @@
 #include <limits>
 #include <string>
 
-#include <Eigen/QR>
 
 #include "errors.hpp"
 
@@ -14,7 +13,8 @@ namespace {
 // Gradient of the total energy with respect to (u_O, v_O): the reduced
 // internal force minus load and the reduced momentum, on the region of u_O.
 Vector energy_gradient(const ReducedField& field, const Vector& u, const Vector& v) {
-  const Region& r = field.region(field.active_set(u));
+  const auto r_held = field.region(field.active_set(u));
+  const Region& r = *r_held;
   Vector g(2 * u.size());
   g << r.K * u - r.f, r.M * v;
   return g;
@@ -29,21 +29,38 @@ double amplitude_value(const ReducedField& field, const ShootingOptions& o, cons
     return t.head(n).dot(u - y.head(n)) + t.segment(n, n).dot(v - y.segment(n, n)) +
            t(2 * n) * (period - y(2 * n));
   }
-  switch (o.kind) {
-    case ShootingOptions::Amplitude::displacement: return u(o.probe);
+  return amplitude_value(field, o.kind, o.probe, u, v, period);
+}
+
+// Relative periodicity residual, as in periodic_orbit.hpp.
+double periodicity(const Vector& u0, const Vector& v0, const FlowResult& r, double T) {
+  const double us = std::max(u0.norm(), periodic_tiny), vs = us * 2 * M_PI / T;
+  return std::max((r.u - u0).norm() / us, (r.v - v0).norm() / vs);
+}
+
+}  // namespace
+
+double amplitude_value(const ReducedField& field, ShootingOptions::Amplitude kind, Index probe,
+                       const Vector& u, const Vector& v, double period) {
+  switch (kind) {
+    case ShootingOptions::Amplitude::displacement: return u(probe);
     case ShootingOptions::Amplitude::energy: return field.energies(u, v)(3);
     case ShootingOptions::Amplitude::period: break;
   }
   return period;
 }
 
-// Relative periodicity residual, as in periodic_orbit.hpp.
-double periodicity(const Vector& u0, const Vector& v0, const FlowResult& r, double T) {
-  const double us = std::max(u0.norm(), 1e-300), vs = us * 2 * M_PI / T;
-  return std::max((r.u - u0).norm() / us, (r.v - v0).norm() / vs);
+Vector amplitude_gradient(const ReducedField& field, ShootingOptions::Amplitude kind,
+                          Index probe, const Vector& u, const Vector& v) {
+  const Index n = u.size();
+  Vector grad = Vector::Zero(2 * n + 1);
+  switch (kind) {
+    case ShootingOptions::Amplitude::displacement: grad(probe) = 1; break;
+    case ShootingOptions::Amplitude::energy: grad.head(2 * n) = energy_gradient(field, u, v); break;
+    case ShootingOptions::Amplitude::period: grad(2 * n) = 1; break;
+  }
+  return grad;
 }
-
-}  // namespace
 
 PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v0, double T,
                     const ShootingOptions& o) {
@@ -72,8 +89,8 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
                             ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0, T)
                             : o.amplitude;
   const double amp_scale =
-      o.arclength ? o.arclength->tangent.norm() * std::max(o.arclength->anchor.norm(), 1e-300)
-                  : std::max(std::abs(target), 1e-300);
+      o.arclength ? o.arclength->tangent.norm() * std::max(o.arclength->anchor.norm(), periodic_tiny)
+                  : std::max(std::abs(target), periodic_tiny);
   const bool half = o.half_period;
 
   // Unknowns y = (u0, v0, T) or, for half-period shooting, (u0, T/2).
@@ -93,12 +110,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
   // amplitude condition by its target), so that the least-squares steps
   // minimise what convergence is judged on: `merit`, the largest scaled
   // entry; `size`, the 2-norm the line search decreases.
-  struct Evaluation {
-    Vector R;
-    Matrix J;
-    double merit = std::numeric_limits<double>::infinity();
-    double size = std::numeric_limits<double>::infinity();
-  };
+  using Evaluation = GaussNewtonEvaluation;
   auto evaluate = [&](const Vector& y, bool jacobian) {
     Evaluation e;
     Vector u, v;
@@ -107,7 +119,7 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     if (!(period > 0) || !u.allFinite() || !v.allFinite()) return e;
     const FlowResult r = flow.integrate(u, v, half ? 0.5 * period : period, jacobian);
     const double amp = amplitude_value(field, o, u, v, period) - target;
-    const double us = std::max(u.norm(), 1e-300), vs = us * 2 * M_PI / period;
+    const double us = std::max(u.norm(), periodic_tiny), vs = us * 2 * M_PI / period;
     Vector weight;
     if (half) {
       e.R.resize(n + 1);
@@ -127,11 +139,8 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     e.size = e.R.norm();
     if (!jacobian) return e;
     // Gradient of the amplitude condition in (u0, v0, T).
-    Vector grad = Vector::Zero(2 * n + 1);
-    if (o.kind == ShootingOptions::Amplitude::displacement) grad(o.probe) = 1;
-    if (o.kind == ShootingOptions::Amplitude::energy) grad.head(2 * n) = energy_gradient(field, u, v);
-    if (o.kind == ShootingOptions::Amplitude::period) grad(2 * n) = 1;
-    if (o.arclength) grad = o.arclength->tangent;
+    const Vector grad =
+        o.arclength ? o.arclength->tangent : amplitude_gradient(field, o.kind, o.probe, u, v);
     if (half) {
       // d v(T/2) / d(u0, T/2) = (monodromy_vu, a(T/2)).
       e.J = Matrix::Zero(n + 1, n + 1);
@@ -151,30 +160,20 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
     return e;
   };
 
-  // Gauss-Newton with backtracking on the merit: the period map is only
+  // Damped Gauss-Newton (gauss_newton.hpp): the period map is only
   // piecewise smooth, and a full step from a rough guess can jump to
   // another branch (a multiple of the period).
+  GaussNewtonOptions gn;
+  gn.period_index = y.size() - 1;
+  gn.tolerance = o.tolerance;
+  gn.max_iterations = o.max_iterations;
+  gn.solver = GaussNewtonOptions::Solver::orthogonal;
+  gn.name = "shooting";
+  const GaussNewtonResult solution = gauss_newton(evaluate, y, gn);
   PeriodicOrbit orbit;
-  Evaluation e = evaluate(y, true);
-  for (int it = 0;; ++it) {
-    orbit.residual_history.push_back(e.merit);
-    orbit.iterations = it;
-    if (e.merit <= o.tolerance) break;
-    if (it >= o.max_iterations || !std::isfinite(e.merit))
-      throw NumericalError("shooting: no convergence in " + std::to_string(it) +
-                           " Newton iterations (residual " + std::to_string(e.merit) + ")");
-    const Vector step = e.J.completeOrthogonalDecomposition().solve(-e.R);
-    // Trust region on the period: at most 20% change per step.
-    const Index iT = y.size() - 1;
-    double damping = std::min(1.0, 0.2 * std::abs(y(iT)) / std::max(std::abs(step(iT)), 1e-300));
-    Evaluation trial = evaluate(y + damping * step, false);
-    while (!(trial.size < e.size) && damping > 1.0 / 1024) {
-      damping /= 2;
-      trial = evaluate(y + damping * step, false);
-    }
-    y += damping * step;
-    e = evaluate(y, true);
-  }
+  orbit.residual_history = solution.merits;
+  orbit.iterations = solution.iterations;
+  y = solution.y;
   unpack(y, orbit.u0, orbit.v0, orbit.period);
   analyse_orbit(field, orbit);
   return orbit;

@@ -16,6 +16,7 @@
 
 #include <optional>
 
+#include "gauss_newton.hpp"
 #include "periodic_orbit.hpp"
 
 namespace nbm {
@@ -37,8 +38,17 @@ struct ShootingOptions {
   std::optional<Arclength> arclength;
   bool half_period = false;
   double tolerance = 1e-12;  ///< on the periodicity residual (periodic_orbit.hpp)
-  int max_iterations = 40;
+  int max_iterations = periodic_max_iterations;
 };
+
+/// The amplitude condition (shared by shooting and harmonic balance) at the
+/// state (u, v) of an orbit of the given period: u[probe], the total energy
+/// or the period.
+double amplitude_value(const ReducedField& field, ShootingOptions::Amplitude kind, Index probe,
+                       const Vector& u, const Vector& v, double period);
+/// Its gradient in (u, v, period): 2n + 1 entries.
+Vector amplitude_gradient(const ReducedField& field, ShootingOptions::Amplitude kind,
+                          Index probe, const Vector& u, const Vector& v);
 
 /// Newton from the guess (u0, v0, T); the returned orbit is analysed
 /// (analyse_orbit). Throws NumericalError if Newton does not converge,

@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "periodic_defaults.hpp"
+
 namespace nbm {
 
 class ContactProblem;
@@ -30,7 +32,7 @@ struct OrbitOptions {
   std::string integration = "exact";  ///< harmonic balance: "exact" or "aft"
   bool adaptive = false;              ///< harmonic balance: double H until truncation <= tol
   double truncation_tolerance = 1e-6;
-  int max_iterations = 50;
+  int max_iterations = periodic_max_iterations;
   /// Reduced basis (reduced_basis.hpp): this many fixed-interface modes plus
   /// the static contact shapes; 0: the full interior (at most 3000 dofs).
   int modes = 0;
