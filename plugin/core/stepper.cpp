@@ -32,14 +32,24 @@ Stepper::Stepper(const ContactProblem& problem, double dt) : problem_(problem), 
     throw InputError("dt: " + std::to_string(dt) + ", expected a positive finite time step");
 }
 
-void Stepper::check_load(const ContactLoad& load) const {
+void Stepper::check_load(const ContactLoad& load, bool whole) const {
   const Index n = problem_.size(), nc = problem_.n_contact();
-  check_vector(load.F, n, "F", "one entry per dof");
+  // The obstacle (n_c entries) at every call; the load's n entries only when
+  // asked: at a step the front end has checked them (Solver::step,
+  // set_load_rates), and a second pass over all dofs per step is waste.
   check_vector(load.obstacle.g, nc, "gaps", "one per contact node");
   check_vector(load.obstacle.g_rate, nc, "gap rates", "one per contact node");
   check_vector(load.obstacle.g_accel, nc, "gap accelerations", "one per contact node");
-  if (load.F_rate) check_vector(*load.F_rate, n, "load rate", "one entry per dof");
-  if (load.F_accel) check_vector(*load.F_accel, n, "load acceleration", "one entry per dof");
+  const auto check = [&](const Vector& x, const char* name) {
+    if (whole)
+      check_vector(x, n, name, "one entry per dof");
+    else if (x.size() != n)
+      throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
+                       std::to_string(n) + " (one entry per dof)");
+  };
+  check(load.F, "F");
+  if (load.F_rate) check(*load.F_rate, "load rate");
+  if (load.F_accel) check(*load.F_accel, "load acceleration");
 }
 
 Vector Stepper::gaps(const Vector& u, const Vector& g) const {
@@ -80,7 +90,7 @@ void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, d
   const Index n = problem_.size();
   check_vector(u, n, "u", "one entry per dof");
   check_vector(v, n, "v", "one entry per dof");
-  check_load(load);
+  check_load(load, true);
   if (!std::isfinite(t)) throw InputError("t: non-finite initial time");
   if (check) check_penetration(u, load.obstacle.g, "initial");
   u_ = u;
@@ -106,7 +116,7 @@ void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const A
   check_vector(u, n, "u", "one entry per dof");
   check_vector(v, n, "v", "one entry per dof");
   check_vector(a, n, "a", "one entry per dof");
-  check_load(load);
+  check_load(load, true);
   if (static_cast<Index>(active.size()) != problem_.n_contact())
     throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
                      std::to_string(problem_.n_contact()) + " (one entry per contact node)");
@@ -138,7 +148,7 @@ void Stepper::replace_kinematics(Vector u, Vector v, Vector a) {
 
 StepReport Stepper::step(const ContactLoad& next) {
   if (!initialized_) throw InputError("step: the stepper has no initial state");
-  check_load(next);
+  check_load(next, false);  // sizes; finiteness: the front end's
   // The obstacle's work over the step, -dg . (lambda_n + lambda_{n+1}) / 2:
   // only when the obstacle moves (lambda_n taken before the state changes).
   const bool moving = next.obstacle.g != obstacle_.g;

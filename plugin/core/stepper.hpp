@@ -75,6 +75,8 @@ class Stepper {
   /// is checked only for the schemes that never penetrate.
   void continue_from(const Vector& u, const Vector& v, const ContactLoad& load, double t);
   /// Advances by dt to the load and obstacle of `next` at the new time.
+  /// Sizes and the obstacle are checked; the load's entries are taken as
+  /// finite (the front end checks them: one pass over the dofs, not two).
   StepReport step(const ContactLoad& next);
   /// Advances by dt under the load F at the new time, the obstacle staying
   /// as it is (its gaps and rates unchanged).
@@ -151,7 +153,9 @@ class Stepper {
 
  private:
   void begin(const Vector& u, const Vector& v, const ContactLoad& load, double t, bool check);
-  void check_load(const ContactLoad& load) const;
+  /// Sizes and finite entries of `load`; with `whole` false, the load's
+  /// entries are not scanned (the obstacle's are).
+  void check_load(const ContactLoad& load, bool whole) const;
 
   double obstacle_work_ = 0;
   // Workspaces of a step: the gap change and the reactions at both ends of a
