@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include "errors.hpp"
@@ -15,6 +16,10 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 // Number of block pivots allowed without a decrease of the number of
 // infeasibilities before switching to single pivots (Judice & Pires' p-bar).
 constexpr int kBlockPivotPatience = 3;
+
+// Ratio of magnitudes of the right-hand side above which rows are of two
+// scales (solve_two_scale).
+constexpr double kScaleSeparation = 1e3;
 
 void free_indices(const std::vector<bool>& active, std::vector<Index>& F) {
   F.clear();
@@ -77,15 +82,24 @@ void solve_principal(const Eigen::LLT<Matrix>& llt, const Vector& q,
 // Block principal pivoting (header) from the active set in r.
 // `factor(F)` returns the Cholesky factor of A_FF for the free set F of
 // r.active (a pointer, null if A_FF is not positive definite); F, infeasible
-// and work are workspaces.
+// and work are workspaces. Rows marked in `frozen` (empty: none) stay at
+// z_i = 0 and are neither checked nor part of the tolerances' scale: the
+// pivoting then solves the principal sub-LCP of the other rows. Returns the
+// smallest w_i of the checked rows with z_i = 0 before the round-off noise
+// is removed (negative: a row accepted by its tolerance only).
 template <class Factor>
-void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
-           std::vector<Index>& infeasible, Vector& work, Factor factor) {
+double pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
+           std::vector<Index>& infeasible, Vector& work, const std::vector<bool>& frozen,
+           Factor factor) {
   const Index n = q.size();
   // Single pivots alone (Murty) are finite on P-matrices but may need many
   // steps; this bound is far beyond what any practical problem uses and only
   // turns a (theoretically impossible) endless loop into an error.
   const long max_pivots = 1000 + 200L * n;
+  const bool has_frozen = !frozen.empty();
+  double q_scale = 0;
+  for (Index i = 0; i < n; ++i)
+    if (!has_frozen || !frozen[i]) q_scale = std::max(q_scale, std::abs(q(i)));
   Index best_infeasible = n + 1;
   int patience = kBlockPivotPatience;
 
@@ -110,18 +124,22 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
     // Round-off tolerances scale with the magnitudes of the current solution.
     const double z_scale = r.z.cwiseAbs().maxCoeff();
     const double tol_z = 8 * n * kEps * z_scale;
-    const double tol_w = 8 * n * kEps * (q.cwiseAbs().maxCoeff() + a_max * z_scale);
+    const double tol_w = 8 * n * kEps * (q_scale + a_max * z_scale);
     infeasible.clear();
-    for (Index i = 0; i < n; ++i)
+    double w_min = std::numeric_limits<double>::infinity();
+    for (Index i = 0; i < n; ++i) {
+      if (has_frozen && frozen[i]) continue;
+      if (r.active[i]) w_min = std::min(w_min, r.w(i));
       if ((!r.active[i] && r.z(i) < -tol_z) || (r.active[i] && r.w(i) < -tol_w))
         infeasible.push_back(i);
+    }
 
     if (infeasible.empty()) {
       // Feasible complementary basis: this is the unique solution. Remove the
       // round-off sign noise so that z >= 0 and w >= 0 hold exactly.
       r.z = r.z.cwiseMax(0.0);
       r.w = r.w.cwiseMax(0.0);
-      return;
+      return w_min;
     }
     const Index count = static_cast<Index>(infeasible.size());
     if (count < best_infeasible) {
@@ -139,7 +157,69 @@ void pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::ve
   throw NumericalError("LCP: no solution after " + std::to_string(max_pivots) + " pivots");
 }
 
+// Marks in ws.frozen the rows of a two-scale LCP that the solution r leaves
+// open by far: the rows with the largest q_i, all with z_i = 0 and w_i > 0,
+// whose q_i exceed every other |q_j| by kScaleSeparation or more. Returns
+// whether there are such rows.
+bool mark_far_rows(const Vector& q, const LcpResult& r, LcpWorkspace& ws) {
+  const Index n = q.size();
+  ws.order.resize(n);  // capacity reserved: no allocation
+  std::iota(ws.order.begin(), ws.order.end(), Index{0});
+  std::sort(ws.order.begin(), ws.order.end(),
+            [&](Index a, Index b) { return std::abs(q(a)) > std::abs(q(b)); });
+  Index split = 0;
+  for (Index k = 0; k + 1 < n; ++k) {
+    const Index i = ws.order[k];
+    if (!r.active[i] || q(i) <= 0 || r.w(i) <= 0) break;
+    if (q(i) >= kScaleSeparation * std::abs(q(ws.order[k + 1]))) split = k + 1;
+  }
+  if (split == 0) return false;
+  ws.frozen.assign(n, false);
+  for (Index k = 0; k < split; ++k) ws.frozen[ws.order[k]] = true;
+  return true;
+}
+
+// The solution by pivoting, with the rows of two scales judged apart. The
+// tolerances of the sign checks scale with max |q_i|, so one row with a huge
+// q_i (a contact node far from the obstacle: gap 1e9 beside gaps of 1e-3)
+// would let every other row pass with w_i down to -1e-5. When the solution
+// has such far rows and a row was accepted by its tolerance only, the far
+// rows are frozen at z = 0 and the sub-LCP of the others solved again, warm,
+// with their own scale; the far rows are then checked with the full scale.
+// Should that check or the second pivoting fail, the first solution (valid
+// to the full scale's round-off) stands.
+template <class Factor>
+void solve_two_scale(const Matrix& A, const Vector& q, double a_max, LcpResult& r,
+                     LcpWorkspace& ws, Factor factor) {
+  const double w_min = pivot(A, q, a_max, r, ws.free, ws.infeasible, ws.rhs, {}, factor);
+  if (w_min >= 0 || !mark_far_rows(q, r, ws)) return;
+  ws.first = r;
+  try {
+    pivot(A, q, a_max, r, ws.free, ws.infeasible, ws.rhs, ws.frozen, factor);
+  } catch (const NumericalError&) {
+    r = ws.first;
+    return;
+  }
+  const double tol_w = 8 * q.size() * kEps *
+                       (q.cwiseAbs().maxCoeff() + a_max * r.z.cwiseAbs().maxCoeff());
+  for (Index i = 0; i < q.size(); ++i)
+    if (ws.frozen[i] && r.w(i) < -tol_w) {
+      r = ws.first;
+      return;
+    }
+}
+
 }  // namespace
+
+LcpWorkspace::LcpWorkspace(Index n) : rhs(n) {
+  free.reserve(n);
+  infeasible.reserve(n);
+  order.reserve(n);
+  frozen.reserve(n);
+  first.z.resize(n);
+  first.w.resize(n);
+  first.active.reserve(n);
+}
 
 LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<bool>& guess) {
   const Index n = q.size();
@@ -148,10 +228,9 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   LcpResult r;
   start(r, q, guess);
   if (n == 0) return r;
-  std::vector<Index> F, infeasible;
-  Vector work(n);
+  LcpWorkspace ws(n);
   Eigen::LLT<Matrix> llt;
-  pivot(A, q, A.cwiseAbs().maxCoeff(), r, F, infeasible, work,
+  solve_two_scale(A, q, A.cwiseAbs().maxCoeff(), r, ws,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           llt.compute(principal_block(A, free));
           return llt.info() == Eigen::Success ? &llt : nullptr;
@@ -159,11 +238,9 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   return r;
 }
 
-CachedLcpSolver::CachedLcpSolver(Matrix A) : A_(std::move(A)), rhs_(A_.rows()) {
+CachedLcpSolver::CachedLcpSolver(Matrix A) : A_(std::move(A)), workspace_(A_.rows()) {
   check_matrix(A_, A_.rows());
   a_max_ = A_.size() > 0 ? A_.cwiseAbs().maxCoeff() : 0.0;
-  free_.reserve(A_.rows());
-  infeasible_.reserve(A_.rows());
   result_.active.reserve(A_.rows());
 }
 
@@ -175,7 +252,7 @@ const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>
   check_data(q, guess);
   start(result_, q, guess);
   if (n == 0) return result_;
-  pivot(A_, q, a_max_, result_, free_, infeasible_, rhs_,
+  solve_two_scale(A_, q, a_max_, result_, workspace_,
         [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
           const auto& llt = principal_blocks_.get(
               result_.active, [&] { return Eigen::LLT<Matrix>(principal_block(A_, free)); });

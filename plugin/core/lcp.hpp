@@ -11,7 +11,11 @@
 // which terminates finitely on every P-matrix. Termination is decided by the
 // signs of the exact subproblem solutions, never by a convergence tolerance:
 // the returned active set is the one whose principal subproblem is feasible,
-// and complementarity holds to round-off.
+// and complementarity holds to round-off. The round-off tolerances of those
+// sign checks scale with the data; rows whose right-hand side is larger than
+// the others' by orders of magnitude (a contact node far from the obstacle)
+// are judged apart so that they do not loosen the others' checks (lcp.cpp,
+// solve_two_scale).
 #pragma once
 
 #include <vector>
@@ -26,6 +30,16 @@ struct LcpResult {
   Vector w;                   ///< w = q + A z >= 0 up to round-off (the reactions lambda)
   std::vector<bool> active;   ///< active[i]: z_i = 0 (contact closed)
   int pivots = 0;             ///< number of principal subproblems solved
+};
+
+/// Workspaces of the pivoting, kept by CachedLcpSolver between solves so
+/// that a solve allocates nothing (internal).
+struct LcpWorkspace {
+  explicit LcpWorkspace(Index n = 0);
+  std::vector<Index> free, infeasible, order;
+  std::vector<bool> frozen;
+  Vector rhs;
+  LcpResult first;
 };
 
 class LcpSolver {
@@ -62,8 +76,7 @@ class CachedLcpSolver {
   double a_max_;
   mutable ActiveSetCache<Eigen::LLT<Matrix>> principal_blocks_;
   mutable LcpResult result_;
-  mutable std::vector<Index> free_, infeasible_;
-  mutable Vector rhs_;
+  mutable LcpWorkspace workspace_;
 };
 
 }  // namespace nbm

@@ -109,6 +109,39 @@ TEST(Lcp, MatchesBruteForceWithNearlyDuplicatedRows) {
   }
 }
 
+TEST(Lcp, RowsOfAFarLargerScaleDoNotLoosenTheOthers) {
+  // Two rows with q_i = 1e9 and 1e10 (contact nodes far from the obstacle)
+  // beside rows of scale 1e-3: the far rows stay open, and the others must be
+  // the solution of their own sub-LCP to their own round-off (brute force on
+  // the sub-problem), not merely to 1e-13 of the largest |q_i|, which would
+  // accept sign errors of 1e-4 in them.
+  for (int n = 4; n <= 12; ++n) {
+    for (int seed = 0; seed < 10; ++seed) {
+      std::mt19937 rng(7000 * n + seed);
+      const Mat A = nbm_test::random_spd(n, 20.0, rng);
+      Vec q = 1e-3 * nbm_test::random_vector(n, rng);
+      const std::vector<int> far = {1, n - 1};
+      q(far[0]) = 1e9;
+      q(far[1]) = 1e10;
+      std::vector<int> near;
+      for (int i = 0; i < n; ++i)
+        if (i != far[0] && i != far[1]) near.push_back(i);
+      const Mat A_near = A(near, near);
+      const Vec q_near = q(near);
+      const Vec z_ref = nbm_test::brute_force_lcp(A_near, q_near);
+      SCOPED_TRACE("n = " + std::to_string(n) + ", seed = " + std::to_string(seed));
+      const nbm::LcpResult r = LcpSolver::solve(A, q);
+      EXPECT_EQ(r.z(far[0]), 0.0);
+      EXPECT_EQ(r.z(far[1]), 0.0);
+      const double scale = std::max(z_ref.cwiseAbs().maxCoeff(),
+                                    q_near.cwiseAbs().maxCoeff() / A.cwiseAbs().maxCoeff());
+      EXPECT_LE((r.z(near) - z_ref).cwiseAbs().maxCoeff(), 1e-10 * scale);
+      const Vec w = q + A * r.z;
+      EXPECT_GE(w(near).minCoeff(), -1e-12 * q_near.cwiseAbs().maxCoeff());
+    }
+  }
+}
+
 TEST(Lcp, SolvesOneByOneInClosedForm) {
   // z = max(0, -q/a): the two cases of a scalar LCP.
   const Mat A = Mat::Constant(1, 1, 4.0);
