@@ -16,6 +16,14 @@ SparseMatrix diagonal_matrix(const Vector& d) {
   return D;
 }
 
+const Damping& check_explicit_damping(const Damping& damping) {
+  if (damping.b_K != 0 || damping.has_matrix())
+    throw InputError("damping: the explicit scheme takes only mass-proportional damping (a_M, "
+                     "on the lumped mass); stiffness-proportional (b_K) or assembled damping "
+                     "would need a factorization of M + dt/2 C: use scheme \"newmark\"");
+  return damping;
+}
+
 }  // namespace
 
 double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
@@ -46,12 +54,16 @@ double max_eigenvalue(const SparseMatrix& K, const Vector& m) {
   return std::min(gershgorin, rayleigh);
 }
 
-CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem, double dt)
-    : NbmStepper(problem, dt),
+CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem, double dt,
+                                                   const Damping& damping)
+    : NbmStepper(problem, dt, check_explicit_damping(damping)),
       lumped_(diagonal_matrix(problem.lumped_mass())),
       solver_(make_diagonal_inverse(lumped_.diagonal(), "M (row-sum lumped)"),
               problem.constraint_basis()),
-      critical_dt_(2.0 / std::sqrt(max_eigenvalue(problem.K(), lumped_.diagonal()))) {
+      critical_dt_(2.0 / std::sqrt(max_eigenvalue(problem.K(), lumped_.diagonal()))),
+      a_M_(damping.a_M) {
+  // C on the scheme's own (lumped) mass, for the step and the dissipation.
+  if (damped()) C_ = a_M_ * lumped_;
   if (dt > critical_dt_) {
     std::ostringstream msg;
     msg << "dt: " << dt << " exceeds the critical time step " << critical_dt_
@@ -62,8 +74,18 @@ CentralDifferenceStepper::CentralDifferenceStepper(const ContactProblem& problem
 }
 
 void CentralDifferenceStepper::solve_acceleration(const ContactLoad& load) {
+  solve_acceleration(load, v_, 0.0);
+}
+
+void CentralDifferenceStepper::solve_acceleration(const ContactLoad& load, const Vector& v,
+                                                  double dt_c) {
   r_ = load.F;
   r_.noalias() -= problem_.K() * u_;
+  if (damped()) {
+    // (1 + a_M dt_c) M a = r - a_M M v + G^T mu: M's solve of the scaled r.
+    r_.noalias() -= C_ * v;
+    r_ /= 1 + a_M_ * dt_c;
+  }
   acceleration_constraint(load, active_, h_accel_);
   solver_.solve(active_, r_, h_accel_, a_);
 }
@@ -74,7 +96,8 @@ StepReport CentralDifferenceStepper::advance_interior(const ContactLoad& next) {
   a_old_ = a_;
   u_ += dt_ * v_ + (0.5 * dt_ * dt_) * a_;
   active_ = boundary_.enforce(u_, next.F, next.obstacle.g, active_).active;
-  solve_acceleration(next);
+  if (damped()) v_tilde_ = v_ + (0.5 * dt_) * a_old_;  // the velocity the damping sees
+  solve_acceleration(next, v_tilde_, 0.5 * dt_);
   v_ += (0.5 * dt_) * (a_old_ + a_);
   return report;
 }

@@ -100,17 +100,8 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
     for (int e : entries)
       if (e != 1) exact_round_trip_ = false;
   }
-  const SparseMatrix back = to_internal_.transpose();
-  // Symmetric to the last bit (the input is symmetric to kSymmetryTolerance):
-  // Cholesky factors and the LCP rely on it.
-  const auto transformed = [&](const SparseMatrix& A) {
-    SparseMatrix B = to_internal_ * A * back;
-    B = 0.5 * (B + SparseMatrix(B.transpose()));
-    B.prune(0.0);
-    return B;
-  };
-  M_ = transformed(M);
-  K_ = transformed(K);
+  M_ = to_internal(M);
+  K_ = to_internal(K);
 
   const Index nc = contacts_.size();
   contact_.resize(nc);
@@ -161,6 +152,15 @@ void ContactProblem::make_boundary_massless(SparseMatrix M) {
                          std::to_string(j) + ") couples a contact dof, expected M_CC = 0, M_CO = 0");
   M_ = std::move(M);
   massless_boundary_ = true;
+}
+
+SparseMatrix ContactProblem::to_internal(const SparseMatrix& A) const {
+  // Symmetric to the last bit (the input is symmetric to kSymmetryTolerance):
+  // Cholesky factors and the LCP rely on it.
+  SparseMatrix B = to_internal_ * A * SparseMatrix(to_internal_.transpose());
+  B = 0.5 * (B + SparseMatrix(B.transpose()));
+  B.prune(0.0);
+  return B;
 }
 
 Vector ContactProblem::to_internal(const Vector& x) const { return to_internal_ * x; }

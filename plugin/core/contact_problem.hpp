@@ -55,6 +55,10 @@ class ContactProblem {
 
   /// Internal coordinates of a user vector (displacement, velocity or load).
   Vector to_internal(const Vector& x) const;
+  /// Internal coordinates of a user matrix like M and K (e.g. a damping
+  /// matrix, method.md §9): rows and columns of fixed dofs dropped, contact
+  /// nodes rotated, symmetrized to the last bit.
+  SparseMatrix to_internal(const SparseMatrix& A) const;
   /// User vector of internal coordinates; fixed dofs are zero.
   Vector to_user(const Vector& x) const;
   /// True if to_internal(to_user(x)) == x bit for bit for every finite x:

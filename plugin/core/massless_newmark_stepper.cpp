@@ -13,15 +13,34 @@ void check_massless(const ContactProblem& problem) {
                      "(mass redistribution)");
 }
 
+// The massless boundary's contact dofs carry no damping of their own
+// (header): an assembled damping matrix must leave them out.
+const Damping& check_boundary_undamped(const ContactProblem& problem, const Damping& damping) {
+  if (!damping.has_matrix()) return damping;
+  std::vector<char> is_contact(problem.size(), 0);
+  for (Index c : problem.contact_index()) is_contact[c] = 1;
+  const SparseMatrix& C = damping.C_user;
+  if (C.rows() != problem.size()) return damping;  // the Stepper reports the size
+  for (Index j = 0; j < C.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(C, j); it; ++it)
+      if ((is_contact[it.row()] || is_contact[j]) && it.value() != 0.0)
+        throw InputError("damping matrix: an entry couples a contact dof; with the massless "
+                         "boundary (mass redistribution) the contact dofs carry no damping of "
+                         "their own: expected C_CC = 0, C_CO = 0 (Rayleigh's b_K K is allowed)");
+  return damping;
+}
+
 }  // namespace
 
 MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
-                                               double beta, double gamma)
-    : NbmStepper(problem, dt),
-      iteration_((check_massless(problem), problem), dt, beta, gamma),
+                                               double beta, double gamma,
+                                               const Damping& damping)
+    : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
+      iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
       Y_(iteration_.contact_columns()),
-      lcp_(std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * inner_products(Y_))) {}
+      lcp_(std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * inner_products(Y_))),
+      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {}
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives
@@ -31,6 +50,7 @@ void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   const SparseMatrix& E_C = problem_.constraint_basis().rightCols(nc);
   const SparseMatrix M_reg = problem_.M() + SparseMatrix(E_C * E_C.transpose());
   Vector r = load.F - problem_.K() * u_;
+  if (damped()) r -= C_ * v_;
   for (Index c : problem_.contact_index()) r(c) = 0.0;
   make_cholesky_inverse(M_reg, "M (interior block)")->solve_in_place(r);
   a_ = r;
@@ -51,6 +71,12 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   Vector& a = acceleration_;
   a = next.F;
   a.noalias() -= problem_.K() * u_hat_;
+  if (damped()) {
+    // Interior rows: - C v~; contact rows: s (F - K u_hat)_C (header).
+    Cv_.noalias() = C_ * v_pred_;
+    for (Index k = 0; k < nc; ++k) Cv_(c[k]) = (1 - contact_row_scale_) * a(c[k]);
+    a -= Cv_;
+  }
   S_.forward_in_place(a);  // y
   q_.resize(nc);
   for (Index k = 0; k < nc; ++k)

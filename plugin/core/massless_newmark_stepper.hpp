@@ -14,6 +14,16 @@
 // forward and one backward substitution: with S = P' L L' P and
 // Y = L^-1 P E_C (sparse, kept), W_CC = Y^T Y, (S^-1 r)_C = Y^T y for
 // y = L^-1 P r, and a = P' L^-T (y - Y lambda).
+//
+// Damping (method.md §9): the contact dofs carry no damping of their own
+// either (C_user's rows and columns of the contact dofs must vanish; a_M M
+// is redistributed with M), except Rayleigh's stiffness part b_K K, whose
+// contact rows are b_K K_C: -- the Kelvin-Voigt stress of the relation. Then
+// S = M + gamma dt C + beta dt^2 K has contact rows s beta dt^2 K_C:,
+// s = 1 + gamma b_K / (beta dt), and the contact rows of the right-hand side
+// are s (F - K u_hat)_C: the step still says (K u)_C = F_C - lambda, the
+// nodal boundary relation, with lambda' = s lambda in the same LCP. The
+// interior rows carry F - C v~ - K u_hat.
 #pragma once
 
 #include <memory>
@@ -31,14 +41,16 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// sparse forward substitutions).
   /// Throws InputError on beta, gamma out of (0, 1/2] x [1/2, 1] or a problem
   /// with boundary mass, NumericalError if S is not positive definite.
+  /// Throws InputError, too, if the damping matrix C_user couples a
+  /// contact dof.
   MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
-                         double gamma = 0.5);
+                         double gamma = 0.5, const Damping& damping = {});
 
   using Stepper::step;
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
-  /// a_O = M_OO^-1 (F - K u)_O (the contact rows carry no inertia), a_C from
+  /// a_O = M_OO^-1 (F - K u - C v)_O (the contact rows carry no inertia), a_C from
   /// the nodal boundary relation.
   void solve_acceleration(const ContactLoad& load) override;
   /// Only g_{n+1} enters (the contact dofs carry no inertia, so the
@@ -50,8 +62,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
   const CholeskyInverse& S_;              // the iteration matrix
   SparseMatrix Y_;                        // L^-1 P E_C
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
+  double contact_row_scale_;              // s of the header (1 without b_K)
   // Workspaces of a step (sized by the first one).
-  Vector u_hat_, v_pred_, acceleration_, q_, h_accel_;
+  Vector u_hat_, v_pred_, acceleration_, q_, h_accel_, Cv_;
   ActiveSet open_;
 };
 

@@ -9,10 +9,10 @@
 namespace nbm {
 
 MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
-                                     double restitution)
-    : Stepper(problem, dt),
+                                     double restitution, const Damping& damping)
+    : Stepper(problem, dt, damping),
       restitution_(restitution),
-      iteration_(problem, dt, 0.25, 0.5),
+      iteration_(problem, dt, 0.25, 0.5, C_),
       S_(*iteration_.S()),
       W_CC_(inner_products(iteration_.contact_columns())),
       impulse_(Vector::Zero(problem.n_contact())) {
@@ -45,6 +45,7 @@ void MoreauJeanStepper::restore_scheme_state(const Vector& state) {
 
 void MoreauJeanStepper::solve_acceleration(const Vector& F) {
   a_ = F - problem_.K() * u_;
+  if (damped()) a_ -= C_ * v_;
   make_cholesky_inverse(problem_.M(), "M")->solve_in_place(a_);
 }
 
@@ -58,6 +59,7 @@ StepReport MoreauJeanStepper::advance(const ContactLoad& next) {
   // Free velocity (theta = 1/2, load at the midpoint).
   Vector v_free = problem_.M() * v_ + dt * (0.5 * (F_ + F_next) - problem_.K() * u_) -
                   (0.25 * dt * dt) * (problem_.K() * v_);
+  if (damped()) v_free -= (0.5 * dt) * (C_ * v_);
   S_.solve_in_place(v_free);
 
   // Contacts predicted closed at mid-step (the gap rate is g' - v_C), and

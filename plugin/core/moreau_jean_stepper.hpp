@@ -6,7 +6,9 @@
 // theta = 1/2 on the velocity (method of Jean 1999):
 //   (M + dt^2/4 K) v+ = M v + dt (F - K u) - dt^2/4 K v - E_C p,
 //   u+ = u + dt (v + v+)/2,
-// the same matrix as average-acceleration Newmark (beta = 1/4). For the
+// the same matrix as average-acceleration Newmark (beta = 1/4). With damping
+// C (method.md §9) the velocity at mid-step (v + v+)/2 damps it: the matrix
+// gains dt/2 C and the right-hand side -dt/2 C v. For the
 // contacts predicted closed, gap(u) - dt/2 gap_rate <= 0, the impulses p
 // and the separation velocities w = -v_C solve the LCP of Newton's law
 //   0 <= w+ + e w  _|_  p >= 0   (e: restitution coefficient in [0, 1]),
@@ -27,7 +29,8 @@ class MoreauJeanStepper final : public Stepper {
  public:
   /// Throws InputError unless 0 <= restitution <= 1, NumericalError if
   /// M + dt^2/4 K is not positive definite.
-  MoreauJeanStepper(const ContactProblem& problem, double dt, double restitution);
+  MoreauJeanStepper(const ContactProblem& problem, double dt, double restitution,
+                    const Damping& damping = {});
 
   using Stepper::reactions;
   using Stepper::step;
@@ -47,11 +50,11 @@ class MoreauJeanStepper final : public Stepper {
   void restore_scheme_state(const Vector& state) override;
 
  private:
-  /// Reported only (the scheme is first order in velocity): M a = F - K u.
+  /// Reported only (the scheme is first order in velocity): M a = F - K u - C v.
   void solve_acceleration(const Vector& F);
 
   double restitution_;
-  NewmarkIteration iteration_;  // its matrix M + dt^2/4 K (beta = 1/4)
+  NewmarkIteration iteration_;  // its matrix M + dt/2 C + dt^2/4 K (beta = 1/4)
   const CholeskyInverse& S_;
   Matrix W_CC_;
   Vector impulse_;

@@ -2,8 +2,8 @@
 
 namespace nbm {
 
-NbmStepper::NbmStepper(const ContactProblem& problem, double dt)
-    : Stepper(problem, dt), boundary_(problem) {}
+NbmStepper::NbmStepper(const ContactProblem& problem, double dt, const Damping& damping)
+    : Stepper(problem, dt, damping), boundary_(problem) {}
 
 void NbmStepper::start(const ContactLoad& load) {
   active_ = boundary_.enforce(u_, F_, obstacle_.g, {}).active;

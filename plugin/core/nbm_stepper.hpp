@@ -18,7 +18,7 @@ class NbmStepper : public Stepper {
   void reactions(Vector& lambda) const override { boundary_.reactions(u_, F_, lambda); }
 
  protected:
-  NbmStepper(const ContactProblem& problem, double dt);
+  NbmStepper(const ContactProblem& problem, double dt, const Damping& damping);
 
   /// u_C from the LCP, v_C = A v_O + e', then solve_acceleration.
   void start(const ContactLoad& load) override;

@@ -15,10 +15,15 @@ void check_newmark_parameters(double beta, double gamma) {
 }
 
 NewmarkIteration::NewmarkIteration(const ContactProblem& problem, double dt, double beta,
-                                   double gamma)
+                                   double gamma, const SparseMatrix& C)
     : problem_(problem), dt_(dt), beta_(beta), gamma_(gamma) {
   check_newmark_parameters(beta, gamma);
-  S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
+  if (C.size() == 0) {
+    S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
+  } else {
+    S_ = make_cholesky_inverse(problem.M() + (gamma * dt) * C + (beta * dt * dt) * problem.K(),
+                               "M + gamma dt C + beta dt^2 K");
+  }
 }
 
 SparseMatrix NewmarkIteration::contact_columns() const {

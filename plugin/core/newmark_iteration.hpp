@@ -1,8 +1,9 @@
 // Newmark's update and iteration matrix, shared by the implicit schemes
 // (method.md §5): the paper's NBM (NewmarkStepper), the massless boundary
 // (MasslessNewmarkStepper) and Moreau-Jean, whose theta = 1/2 step has the
-// matrix of beta = 1/4. S = M + beta dt^2 K is factored here, once, and the
-// contact blocks built on it come from here too.
+// matrix of beta = 1/4. S = M + gamma dt C + beta dt^2 K (C the damping,
+// method.md §9; none by default) is factored here, once, and the contact
+// blocks built on it come from here too.
 #pragma once
 
 #include <memory>
@@ -17,13 +18,16 @@ void check_newmark_parameters(double beta, double gamma);
 
 class NewmarkIteration {
  public:
-  /// Factors S = M + beta dt^2 K. Throws InputError on beta, gamma out of
-  /// (0, 1/2] x [1/2, 1], NumericalError if S is not positive definite.
-  NewmarkIteration(const ContactProblem& problem, double dt, double beta, double gamma);
+  /// Factors S = M + gamma dt C + beta dt^2 K (C: 0 x 0 for none). Throws
+  /// InputError on beta, gamma out of (0, 1/2] x [1/2, 1], NumericalError if
+  /// S is not positive definite.
+  NewmarkIteration(const ContactProblem& problem, double dt, double beta, double gamma,
+                   const SparseMatrix& C = SparseMatrix());
 
   double beta() const { return beta_; }
   double gamma() const { return gamma_; }
   double beta_dt2() const { return beta_ * dt_ * dt_; }
+  double gamma_dt() const { return gamma_ * dt_; }
 
   /// The predictors from the state at t_n: u~ = u + dt v + dt^2 (1/2 - beta) a
   /// and v~ = v + dt (1 - gamma) a (no allocation once sized).

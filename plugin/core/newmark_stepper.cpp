@@ -8,17 +8,18 @@
 namespace nbm {
 
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
-                               NewmarkParameters parameters)
-    : NbmStepper(problem, dt),
+                               NewmarkParameters parameters, const Damping& damping)
+    : NbmStepper(problem, dt, damping),
       parameters_(parameters),
-      iteration_(problem, dt, parameters.beta, parameters.gamma),
+      iteration_(problem, dt, parameters.beta, parameters.gamma, C_),
       solver_(iteration_.S(), problem.constraint_basis()) {}
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
   const ConstrainedSolver mass(make_cholesky_inverse(problem_.M(), "M"),
                                problem_.constraint_basis());
-  const Vector r = load.F - problem_.K() * u_;
+  Vector r = load.F - problem_.K() * u_;
+  if (damped()) r.noalias() -= C_ * v_;  // v_ on the relation already (start())
   acceleration_constraint(load, active_, h_accel_);
   mass.solve(active_, r, h_accel_, a_);
 }
@@ -35,6 +36,7 @@ void NewmarkStepper::solve_step(const ActiveSet& active, const ContactLoad& next
   // S a = F - K u_hat + G^T mu', G a = h''.
   r_ = next.F;
   r_.noalias() -= problem_.K() * u_hat_;
+  if (damped()) r_.noalias() -= C_ * v_pred_;  // v = v~ + gamma dt a (§9)
   solver_.solve(active, r_, h_accel_, a_next);
   u_next = u_hat_ + bdt2 * a_next;
   // Closed contacts: a_C = g'' and u_C = g hold exactly, not only to the

@@ -1,5 +1,8 @@
 // Implicit Newmark on the reduced NBM equations (method.md §5), with the
-// active set consistent at t_{n+1}.
+// active set consistent at t_{n+1}. With damping C (method.md §9) the
+// constrained form (4.3) gains C v: the iteration matrix is
+// M + gamma dt C + beta dt^2 K and the right-hand side -C v~; the contact
+// dofs' damping forces reach the interior through P^T, like their inertia.
 #pragma once
 
 #include <memory>
@@ -18,9 +21,11 @@ struct NewmarkParameters {
 
 class NewmarkStepper final : public NbmStepper {
  public:
-  /// Factors S = M + beta dt^2 K once. Throws InputError on beta, gamma out
-  /// of (0, 1/2] x [1/2, 1], NumericalError if S is not positive definite.
-  NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {});
+  /// Factors S = M + gamma dt C + beta dt^2 K once. Throws InputError on
+  /// beta, gamma out of (0, 1/2] x [1/2, 1] or bad damping, NumericalError if
+  /// S is not positive definite.
+  NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {},
+                 const Damping& damping = {});
 
   using Stepper::step;
 
@@ -33,10 +38,12 @@ class NewmarkStepper final : public NbmStepper {
 
  private:
   /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
-  /// S u = M u_hat + beta dt^2 F + G^T mu, G u = h, G a = h'' (method.md §8),
+  /// S u = M u_hat + beta dt^2 (F - C v~) + G^T mu, G u = h, G a = h''
+  /// (method.md §8, §9),
   /// where u_hat is u_pred with its contact part from the nodal boundary
   /// relation of that set (G u_hat = h - beta dt^2 h''), solved in
-  /// acceleration form (S a = F - K u_hat + G^T mu', u = u_hat + beta dt^2 a):
+  /// acceleration form (S a = F - C v~ - K u_hat + G^T mu',
+  /// u = u_hat + beta dt^2 a):
   /// a is never formed as (u - u_hat)/(beta dt^2), which loses every digit
   /// when beta dt^2 |a| is below the round-off of u.
   void solve_step(const ActiveSet& active, const ContactLoad& next, Vector& u_next,

@@ -7,6 +7,7 @@
 
 #include "central_difference_stepper.hpp"
 #include "contact_problem.hpp"
+#include "damping.hpp"
 #include "errors.hpp"
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
@@ -89,28 +90,29 @@ Matrix positions_of(const SolverOptions& options, Index n) {
       options.positions.data(), n, n_pos / n);
 }
 
-// The time scheme of the options on a problem (options checked).
+// The time scheme of the options on a problem (options checked), with the
+// damping in the problem's internal coordinates.
 std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const ContactProblem& problem,
-                                      double& critical_dt) {
+                                      const Damping& damping, double& critical_dt) {
   critical_dt = 0;
   const NewmarkParameters defaults;
   const double beta = options.beta.value_or(defaults.beta);
   const double gamma = options.gamma.value_or(defaults.gamma);
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma);
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma, damping);
   if (options.scheme == "newmark") {
     NewmarkParameters parameters;
     parameters.beta = beta;
     parameters.gamma = gamma;
-    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters);
+    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, damping);
   }
   if (options.scheme == "explicit") {
-    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt);
+    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, damping);
     critical_dt = cd->critical_dt();
     return cd;
   }
   return std::make_unique<MoreauJeanStepper>(problem, options.dt,
-                                             options.restitution.value_or(0.0));
+                                             options.restitution.value_or(0.0), damping);
 }
 
 }  // namespace
@@ -123,6 +125,7 @@ struct Solver::Impl {
   // matrices restarts the run bit for bit (internal ones rotate back only to
   // round-off).
   SparseMatrix M_user, K_user;
+  Damping damping_user;  // the damping with its matrix in user coordinates
   std::unique_ptr<ContactProblem> problem;
   std::unique_ptr<Stepper> stepper;
   double critical_dt = 0;
@@ -154,7 +157,9 @@ struct Solver::Impl {
     } else {
       p = std::make_unique<ContactProblem>(M, K, std::move(contacts), fixed_dofs);
     }
-    std::unique_ptr<Stepper> s = make_stepper(options, *p, critical_dt);
+    Damping damping = damping_user;
+    if (damping.has_matrix()) damping.C_user = p->to_internal(damping_user.C_user);
+    std::unique_ptr<Stepper> s = make_stepper(options, *p, damping, critical_dt);
     stepper = std::move(s);  // the old stepper refers to the old problem: first
     problem = std::move(p);
     obstacle = Obstacle::at_rest(problem->gaps());
@@ -250,6 +255,12 @@ Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription&
   std::sort(fixed.begin(), fixed.end());
   fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
   impl_->fixed.assign(fixed.begin(), fixed.end());
+  Damping& damping = impl_->damping_user;
+  damping.a_M = options.rayleigh_mass;
+  damping.b_K = options.rayleigh_stiffness;
+  if (options.damping.rows != 0 || options.damping.cols != 0 || !options.damping.value.empty())
+    damping.C_user = to_sparse(options.damping, "damping matrix");
+  check_damping(damping, Ks.rows());
   impl_->build(Ms, Ks, contact);
   impl_->M_user = Ms;
   impl_->K_user = Ks;
@@ -397,7 +408,7 @@ std::vector<double> Solver::scheme_state() const {
 }
 std::vector<double> Solver::energies() const {
   const Energies e = impl_->stepper->energies();
-  return {e.kinetic, e.elastic, e.load, e.total(), e.obstacle_work};
+  return {e.kinetic, e.elastic, e.load, e.total(), e.obstacle_work, e.dissipated};
 }
 
 }  // namespace nbm

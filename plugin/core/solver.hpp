@@ -44,6 +44,15 @@ struct SolverOptions {
   std::vector<double> positions;
   /// Restitution coefficient of scheme "moreau-jean", in [0, 1] (default 0).
   std::optional<double> restitution;
+  /// Viscous damping (method.md §9), C = rayleigh_mass M + rayleigh_stiffness K
+  /// + damping: Rayleigh coefficients (finite, >= 0; M the scheme's mass:
+  /// redistributed with mass "redistributed", lumped with scheme
+  /// "explicit") and a matrix assembled like M and K (n_dofs x n_dofs,
+  /// symmetric, nonnegative diagonal; rows = 0: none). Scheme "explicit"
+  /// takes only rayleigh_mass; with mass "redistributed" the matrix must not
+  /// couple the contact dofs.
+  double rayleigh_mass = 0, rayleigh_stiffness = 0;
+  CooMatrix damping;
 };
 
 /// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components
@@ -102,7 +111,7 @@ class Solver {
   /// moving one) and scheme_state() (empty for the schemes without one).
   /// Nothing is recomputed, so stepping on reproduces the uninterrupted run
   /// bit for bit. u, v are kept as given (fixed dofs zeroed); the step and
-  /// fallback counters and the obstacle's work restart from zero.
+  /// fallback counters, the obstacle's work and the dissipated energy restart from zero.
   void restart(std::vector<double>& u, std::vector<double>& v, const std::vector<double>& F,
                double t, const std::vector<double>& a, const std::vector<long>& active,
                const std::vector<double>& scheme_state = {});
@@ -139,9 +148,11 @@ class Solver {
   /// The scheme's own part of the state (Moreau-Jean: the last impulse per
   /// contact node; empty for the NBM schemes), for restart().
   std::vector<double> scheme_state() const;
-  /// kinetic, elastic, load potential, total (their sum), and the work done
-  /// by a moving obstacle since the start (method.md §8): with a constant
-  /// load, total - total(start) = obstacle work, to the scheme's accuracy.
+  /// kinetic, elastic, load potential, total (their sum), the work done by a
+  /// moving obstacle since the start (method.md §8) and the energy dissipated
+  /// by the damping since the start (method.md §9): with a constant load,
+  /// total + dissipated - total(start) = obstacle work, to the scheme's
+  /// accuracy.
   std::vector<double> energies() const;
 
  private:

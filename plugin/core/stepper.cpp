@@ -27,9 +27,12 @@ Obstacle Obstacle::at_rest(const Vector& g) {
   return {g, Vector::Zero(g.size()), Vector::Zero(g.size())};
 }
 
-Stepper::Stepper(const ContactProblem& problem, double dt) : problem_(problem), dt_(dt) {
+Stepper::Stepper(const ContactProblem& problem, double dt, const Damping& damping)
+    : problem_(problem), dt_(dt) {
   if (!(dt > 0) || !std::isfinite(dt))
     throw InputError("dt: " + std::to_string(dt) + ", expected a positive finite time step");
+  check_damping(damping, problem.size());
+  C_ = damping_matrix(damping, problem.M(), problem.K());
 }
 
 void Stepper::check_load(const ContactLoad& load, bool whole) const {
@@ -99,6 +102,7 @@ void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, d
   obstacle_ = load.obstacle;
   t_ = t;
   obstacle_work_ = 0;
+  dissipated_ = 0;
   a_.resize(n);
   start(load);
   initialized_ = true;
@@ -131,6 +135,7 @@ void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const A
   obstacle_ = load.obstacle;
   t_ = t;
   obstacle_work_ = 0;
+  dissipated_ = 0;
   initialized_ = true;
 }
 
@@ -156,6 +161,7 @@ StepReport Stepper::step(const ContactLoad& next) {
     reactions(lambda_old_);
     dg_ = next.obstacle.g - obstacle_.g;
   }
+  if (damped()) v_mid_ = v_;
   const StepReport report = advance(next);
   F_ = next.F;
   obstacle_ = next.obstacle;
@@ -163,6 +169,13 @@ StepReport Stepper::step(const ContactLoad& next) {
   if (moving) {
     reactions(lambda_new_);
     obstacle_work_ -= 0.5 * (dg_.dot(lambda_old_) + dg_.dot(lambda_new_));
+  }
+  if (damped()) {
+    // D += dt v_mid^T C v_mid, v_mid = (v_n + v_{n+1}) / 2 (method.md §9).
+    v_mid_ += v_;
+    v_mid_ *= 0.5;
+    Cv_.noalias() = C_ * v_mid_;
+    dissipated_ += dt_ * v_mid_.dot(Cv_);
   }
   return report;
 }
@@ -173,6 +186,7 @@ Energies Stepper::energies() const {
   e.elastic = 0.5 * u_.dot(problem_.K() * u_);
   e.load = -F_.dot(u_);
   e.obstacle_work = obstacle_work_;
+  e.dissipated = dissipated_;
   return e;
 }
 

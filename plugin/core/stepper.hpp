@@ -15,6 +15,7 @@
 
 #include "active_set.hpp"
 #include "contact_problem.hpp"
+#include "damping.hpp"
 
 namespace nbm {
 
@@ -27,6 +28,12 @@ struct Energies {
   /// With a constant load, total() - total(start) equals it (to the scheme's
   /// accuracy; exactly for the massless boundary).
   double obstacle_work = 0;
+  /// Energy dissipated by the damping since the start, D = int v^T C v dt
+  /// (midpoint rule over the steps, v at mid-step the mean of its ends:
+  /// exact for average-acceleration Newmark on a linear system; method.md
+  /// §9). total() + dissipated - obstacle_work stays constant for a fixed
+  /// load, to the scheme's accuracy.
+  double dissipated = 0;
   double total() const { return kinetic + elastic + load; }
 };
 
@@ -57,7 +64,9 @@ struct StepReport {
 
 class Stepper {
  public:
-  Stepper(const ContactProblem& problem, double dt);
+  /// `damping` in the problem's (internal) coordinates; throws InputError
+  /// as check_damping() does.
+  Stepper(const ContactProblem& problem, double dt, const Damping& damping = {});
   virtual ~Stepper() = default;
   Stepper(const Stepper&) = delete;
   Stepper& operator=(const Stepper&) = delete;
@@ -88,7 +97,7 @@ class Stepper {
   /// schemes that have none) -- as it is (nothing is recomputed), so that
   /// stepping on from it reproduces the uninterrupted run bit for bit. The
   /// caches of factorizations per active set are pure memoization. The
-  /// obstacle's work restarts from zero. Throws InputError on wrong sizes,
+  /// obstacle's work and the dissipated energy restart from zero. Throws InputError on wrong sizes,
   /// non-finite entries or, for the NBM schemes, a penetrating u.
   void restore(const Vector& u, const Vector& v, const Vector& a, const ActiveSet& active,
                const ContactLoad& load, double t, const Vector& scheme_state = Vector());
@@ -118,6 +127,10 @@ class Stepper {
   /// g - u_n per contact node, against the current obstacle.
   Vector gaps() const { return gaps(u_, obstacle_.g); }
   Energies energies() const;
+  /// The damping matrix C in internal coordinates (method.md §9); 0 x 0
+  /// without damping.
+  const SparseMatrix& damping() const { return C_; }
+  bool damped() const { return C_.size() != 0; }
   /// State of the scheme beyond (u, v, a, active set, load, obstacle) that an
   /// exact restart needs; empty by default.
   virtual Vector scheme_state() const { return Vector(); }
@@ -150,6 +163,9 @@ class Stepper {
   Vector u_, v_, a_, F_;
   Obstacle obstacle_;
   ActiveSet active_;
+  /// C = a_M M + b_K K + C_user (consistent or redistributed M of the
+  /// problem); a scheme with another mass (lumped) sets its own.
+  SparseMatrix C_;
 
  private:
   void begin(const Vector& u, const Vector& v, const ContactLoad& load, double t, bool check);
@@ -158,9 +174,10 @@ class Stepper {
   void check_load(const ContactLoad& load, bool whole) const;
 
   double obstacle_work_ = 0;
+  double dissipated_ = 0;
   // Workspaces of a step: the gap change and the reactions at both ends of a
-  // step of a moving obstacle.
-  Vector dg_, lambda_old_, lambda_new_;
+  // step of a moving obstacle; the mid-step velocity and C times it.
+  Vector dg_, lambda_old_, lambda_new_, v_mid_, Cv_;
 };
 
 }  // namespace nbm

@@ -6,6 +6,8 @@
 //         mass = "redistributed", positions = xy);   // massless boundary
 //   NBM P(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "moreau-jean",
 //         restitution = 0);                           // the impact-law peer
+//   NBM D(M, K, cdofs, normals, gaps, dt = 1e-3, rayleighM = aM, rayleighK = bK,
+//         damping = C);       // damping C = aM M + bK K + C (method.md §9)
 //   nbmInit(S, u, v, F);              // state at t = 0 (u, v updated in place)
 //   int it = nbmStep(S, u, v, F);     // one step under the load F at t + dt
 //   nbmObstacle(S, g, gdot, gddot);   // a moving obstacle: gaps and rates at
@@ -14,7 +16,7 @@
 //   nbmReplaceContacts(S, cdofs, cnormals, cgaps, u, v, F); // re-linearisation
 //   nbmRestart(S, u, v, F, t, a, act [, state]); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
-//   nbmEnergies(S, e);  real t = nbmTime(S); ...
+//   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 6 entries, e[5] dissipated
 //
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
@@ -28,7 +30,7 @@ namespace {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 8;
+  static const int n_name_param = 11;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -51,6 +53,10 @@ class NbmConstruct : public E_F0mps {
     if (nargs[6])
       opt.positions = vector_of<double>(GetAny<KN<double>*>((*nargs[6])(s)), "NBM", "positions");
     if (nargs[7]) opt.restitution = GetAny<double>((*nargs[7])(s));
+    if (nargs[8]) opt.rayleigh_mass = GetAny<double>((*nargs[8])(s));
+    if (nargs[9]) opt.rayleigh_stiffness = GetAny<double>((*nargs[9])(s));
+    if (nargs[10])
+      opt.damping = coo_of(GetAny<Matrice_Creuse<double>*>((*nargs[10])(s)), "damping");
     nbm::ContactDescription contact;
     contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
     contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
@@ -76,6 +82,9 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"mass", &typeid(string*)},
     {"positions", &typeid(KN<double>*)},
     {"restitution", &typeid(double)},
+    {"rayleighM", &typeid(double)},
+    {"rayleighK", &typeid(double)},
+    {"damping", &typeid(Matrice_Creuse<double>*)},
 };
 
 class NbmConstructOp : public OneOperator {

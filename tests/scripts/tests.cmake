@@ -82,6 +82,13 @@ add_test(NAME script.plate-energy
   WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
 set_tests_properties(script.plate-energy PROPERTIES TIMEOUT 600 LABELS script)
 
+# Damped bouncing plate (-rayleigh aM,bK): no penetration, D > 0, and with the
+# massless boundary E + D = E(0) within 0.5% of m g h0.
+add_test(NAME script.plate-damping
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/plate-damping.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.plate-damping PROPERTIES TIMEOUT 600 LABELS script)
+
 # Exact restart (edp/restart.edp): saving after N steps and resuming, in the
 # same process and in a new one, reproduces the uninterrupted run bit for bit,
 # for every scheme and mass treatment; the disc and the inclined ground have
@@ -100,7 +107,11 @@ foreach(variant
     "moreau-jean;-scheme;moreau-jean;-restitution;0.5"
     "redistributed;-mass;redistributed"
     "disc-P2;-geo;${PROJECT_SOURCE_DIR}/geo/disc.geo;-order;2"
-    "slope-redistributed;-slope;0.1;-h0;0.2;-mass;redistributed")
+    "slope-redistributed;-slope;0.1;-h0;0.2;-mass;redistributed"
+    "damped-newmark;-rayleighM;2;-rayleighK;1e-4"
+    "damped-redistributed;-mass;redistributed;-rayleighM;2;-rayleighK;1e-4"
+    "damped-explicit;-scheme;explicit;-rayleighM;2"
+    "damped-moreau-jean;-scheme;moreau-jean;-restitution;0.5;-rayleighM;2;-rayleighK;1e-4")
   nbm_restart_test("${variant}" script)
 endforeach()
 

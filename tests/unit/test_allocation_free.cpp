@@ -116,6 +116,35 @@ TEST(AllocationFree, MasslessNewmarkStep) {
   EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
 }
 
+// With damping (method.md §9) the steps keep their workspaces too.
+nbm::Damping rayleigh(double a_M, double b_K) {
+  nbm::Damping d;
+  d.a_M = a_M;
+  d.b_K = b_K;
+  return d;
+}
+
+TEST(AllocationFree, DampedNewmarkStep) {
+  const DroppedPlate d;
+  nbm::NewmarkStepper stepper(*d.problem, 1e-3, {}, rayleigh(2, 1e-4));
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
+TEST(AllocationFree, DampedMasslessNewmarkStep) {
+  const DroppedPlate d(true);
+  nbm::MasslessNewmarkStepper stepper(*d.problem, 1e-3, 0.25, 0.5, rayleigh(2, 1e-4));
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
+TEST(AllocationFree, DampedExplicitStep) {
+  const DroppedPlate d;
+  const double critical =
+      2 / std::sqrt(nbm::max_eigenvalue(d.problem->K(), d.problem->lumped_mass()));
+  nbm::CentralDifferenceStepper stepper(*d.problem, 0.5 * critical, rayleigh(2, 0));
+  const int steps = static_cast<int>(0.1 / (0.5 * critical));
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), steps), 0);
+}
+
 TEST(AllocationFree, ExplicitStep) {
   const DroppedPlate d;
   const double critical =
