@@ -132,58 +132,47 @@ void RegionFlow::free_response(double t, Vector& z, Vector& zd) const {
   }
 }
 
-void RegionFlow::modal(double t, Vector& q, Vector& qd, Vector& qdd) const {
-  Vector z, zd;
-  free_response(t, z, zd);
-  q = stationary_ + z;
-  qd = zd;
-  qdd = -(c_.cwiseProduct(zd) + r_.omega2.cwiseProduct(z));
-  for (Index j = 0; j < q.size(); ++j) {
+const RegionFlow::ModalState& RegionFlow::modal(double t) const {
+  if (t == last_.t) return last_;
+  ModalState& m = last_;
+  m.t = t;
+  free_response(t, m.z, m.zd);
+  m.q = stationary_ + m.z;
+  m.qd = m.zd;
+  m.qdd = -(c_.cwiseProduct(m.zd) + r_.omega2.cwiseProduct(m.z));
+  for (Index j = 0; j < m.q.size(); ++j) {
     if (r_.omega2(j) > 0 || rigid_load_(j) == 0) continue;
     double R, Rd;
     rigid_response(c_(j), t, R, Rd);
-    q(j) += rigid_load_(j) * R;
-    qd(j) += rigid_load_(j) * Rd;
-    qdd(j) += rigid_load_(j) * std::exp(-c_(j) * t);
+    m.q(j) += rigid_load_(j) * R;
+    m.qd(j) += rigid_load_(j) * Rd;
+    m.qdd(j) += rigid_load_(j) * std::exp(-c_(j) * t);
   }
   for (Index k = 0; k < Q_.cols(); ++k) {
     const double W = Omega_[k];
     const Eigen::VectorXcd Qt = Q_.col(k) * std::exp(Complex(0, W * t));
-    q += Qt.real();
-    qd -= W * Qt.imag();
-    qdd -= (W * W) * Qt.real();
+    m.q += Qt.real();
+    m.qd -= W * Qt.imag();
+    m.qdd -= (W * W) * Qt.real();
   }
+  return m;
 }
 
 void RegionFlow::state(double t, Vector& u, Vector& v) const {
-  Vector q, qd, qdd;
-  modal(t, q, qd, qdd);
-  u = r_.modes * q;
-  v = r_.modes * qd;
+  const ModalState& m = modal(t);
+  u = r_.modes * m.q;
+  v = r_.modes * m.qd;
 }
 
-Vector RegionFlow::value(double t) const {
-  Vector q, qd, qdd;
-  modal(t, q, qd, qdd);
-  return r_.d + G_ * q;
-}
+Vector RegionFlow::value(double t) const { return r_.d + G_ * modal(t).q; }
 
-Vector RegionFlow::rate(double t) const {
-  Vector q, qd, qdd;
-  modal(t, q, qd, qdd);
-  return G_ * qd;
-}
+Vector RegionFlow::rate(double t) const { return G_ * modal(t).qd; }
 
-Vector RegionFlow::curvature(double t) const {
-  Vector q, qd, qdd;
-  modal(t, q, qd, qdd);
-  return G_ * qdd;
-}
+Vector RegionFlow::curvature(double t) const { return G_ * modal(t).qdd; }
 
 Vector RegionFlow::curvature_bound(double t) const {
-  Vector z, zd;
-  free_response(t, z, zd);
-  const Vector energy = zd.cwiseAbs2() + r_.omega2.cwiseProduct(z.cwiseAbs2());
+  const ModalState& m = modal(t);
+  const Vector energy = m.zd.cwiseAbs2() + r_.omega2.cwiseProduct(m.z.cwiseAbs2());
   const Vector per_mode =
       (c_.cwiseAbs2() + r_.omega2).cwiseSqrt().cwiseProduct(energy.cwiseSqrt());
   return forced_bound_ + G_abs_ * per_mode;

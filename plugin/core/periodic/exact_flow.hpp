@@ -6,6 +6,7 @@
 #pragma once
 
 #include <complex>
+#include <limits>
 #include <vector>
 
 #include "damping.hpp"
@@ -57,9 +58,14 @@ class RegionFlow : public SwitchingFunctions {
   Vector magnitude(double span) const override;
 
  private:
-  /// Modal displacement, velocity and acceleration at local time t; with
-  /// `free`, of the free response z only.
-  void modal(double t, Vector& q, Vector& qd, Vector& qdd) const;
+  /// Modal state at local time t: free response (z, z') and full
+  /// (q, q', q''). The switching search asks value, rate and bound at the
+  /// same t in a row: the last evaluation is kept.
+  struct ModalState {
+    double t = std::numeric_limits<double>::quiet_NaN();
+    Vector z, zd, q, qd, qdd;
+  };
+  const ModalState& modal(double t) const;
   void free_response(double t, Vector& z, Vector& zd) const;
 
   const Region& r_;
@@ -73,6 +79,7 @@ class RegionFlow : public SwitchingFunctions {
   Matrix G_, G_abs_;         ///< H Phi and |H Phi|
   Vector forced_bound_;      ///< per row: sum_k Omega_k^2 |(G Q_k)_r| + sum_rigid |G_rj p_j|
   Matrix PhiTM_;
+  mutable ModalState last_;
 };
 
 struct SwitchEvent {
