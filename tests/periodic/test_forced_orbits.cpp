@@ -80,7 +80,8 @@ TEST(ForcedOrbit, LinearLimitIsTheFrequencyResponseOfTheDampedModel) {
       A.bottomRightCorner(n, n) = -Mr.inverse() * Cr;
       const Eigen::VectorXcd lambda = Eigen::EigenSolver<Matrix>(A).eigenvalues();
       std::vector<double> expected, got;
-      for (Index j = 0; j < 2 * n; ++j) expected.push_back(std::exp(lambda(j).real() * orbit.period));
+      for (Index j = 0; j < 2 * n; ++j)
+        expected.push_back(std::exp(lambda(j).real() * orbit.period));
       for (const auto& mu : orbit.multipliers) got.push_back(std::abs(mu));
       std::sort(expected.begin(), expected.end());
       std::sort(got.begin(), got.end());
@@ -117,10 +118,9 @@ struct Bilinear {
       }
     return x;
   }
-  /// Steady state at t = 0 mod T: periods integrated until a period changes
+  /// Steady state at t = 0 mod T from x: periods integrated until a period changes
   /// the state by less than 1e-13.
-  Eigen::Vector2d steady_state() const {
-    Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  Eigen::Vector2d steady_state(Eigen::Vector2d x = Eigen::Vector2d::Zero()) const {
     for (int p = 0; p < 2000; ++p) {
       const Eigen::Vector2d next = integrate(x, 1);
       if ((next - x).norm() < 1e-13) return next;
@@ -191,6 +191,49 @@ TEST(ForcedOrbit, FloquetMultipliersPredictTheDecayOfAPerturbation) {
   // Rate per period seen by the integration against the largest |mu|.
   const double rate = std::pow(d.norm() / delta.norm(), 1.0 / periods);
   EXPECT_NEAR(rate, std::abs(orbit.multipliers[0]), 0.02 * std::abs(orbit.multipliers[0]));
+}
+
+// Near the resonance the hardening bilinear oscillator has three coexisting
+// orbits at w = 1.3: a small one without contact, a large one with contact
+// (both stable) and, between them, a saddle. Time integration leaves the
+// saddle at the rate of its multiplier, towards one stable orbit or the
+// other depending on the side of the perturbation.
+TEST(ForcedOrbit, AnOrbitFlaggedUnstableIsLeftByTimeIntegration) {
+  Bilinear b;
+  b.w = 1.3;
+  const auto field = b.oscillator().field();
+  const auto saddle = shoot(b, field, 1, Vector::Constant(1, 0.9 * std::cos(3.0)),
+                            Vector::Constant(1, -0.9 * b.w * std::sin(3.0)));
+  ASSERT_FALSE(saddle.stable);
+  const auto mu = saddle.multipliers[0];
+  ASSERT_GT(std::abs(mu), 1.05);
+  ASSERT_EQ(mu.imag(), 0);
+  const auto small = shoot(b, field, 1, Vector::Constant(1, 0.1), Vector::Zero(1));
+  const auto large = shoot(b, field, 1, Vector::Constant(1, -0.95), Vector::Constant(1, 2.7));
+  ASSERT_TRUE(small.stable && large.stable);
+  ASSERT_TRUE(small.switches.empty());
+  ASSERT_FALSE(large.switches.empty());
+
+  Eigen::EigenSolver<Matrix> eig(saddle.monodromy);
+  Index j = 0;
+  eig.eigenvalues().cwiseAbs().maxCoeff(&j);
+  const Eigen::Vector2d unstable = eig.eigenvectors().col(j).real().normalized();
+  const Eigen::Vector2d star(saddle.u0(0), saddle.v0(0));
+  std::vector<Eigen::Vector2d> ends;
+  for (double side : {1.0, -1.0}) {
+    const Eigen::Vector2d delta = side * 1e-6 * unstable;
+    const int periods = 10;
+    const Eigen::Vector2d d = b.integrate(star + delta, periods) - star;
+    const double rate = std::pow(d.norm() / delta.norm(), 1.0 / periods);
+    EXPECT_NEAR(rate, std::abs(mu), 0.02 * std::abs(mu)) << "side " << side;
+    ends.push_back(b.steady_state(star + delta));
+  }
+  // One side settles on each stable orbit (RK4 error as in the test above).
+  const Eigen::Vector2d xs(small.u0(0), small.v0(0)), xl(large.u0(0), large.v0(0));
+  const double to_small = std::min((ends[0] - xs).norm(), (ends[1] - xs).norm());
+  const double to_large = std::min((ends[0] - xl).norm(), (ends[1] - xl).norm());
+  EXPECT_LT(to_small, 2e-8);
+  EXPECT_LT(to_large, 2e-8);
 }
 
 TEST(ForcedOrbit, BadInputIsANamedError) {
