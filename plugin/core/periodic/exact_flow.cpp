@@ -9,92 +9,258 @@ namespace nbm {
 namespace {
 
 constexpr long kMaxSwitches = 100'000;
+using Complex = std::complex<double>;
 
-// cos(w t), sin(w t)/w and (1 - cos(w t))/w^2, continuous down to w = 0.
-struct ModalFunctions {
-  double c, s, r;
-  ModalFunctions(double w2, double t) {
-    if (w2 == 0) {
-      c = 1, s = t, r = 0.5 * t * t;
-      return;
+// e^{-alpha t} C(t) and e^{-alpha t} S(t) for q'' + c q' + w2 q = 0, with
+// alpha = c / 2 and delta^2 = w2 - alpha^2: C = cos(delta t) and
+// S = sin(delta t) / delta (under-damped), C = 1 and S = t (critically
+// damped, and the undamped rigid mode), C = cosh(kappa t) and
+// S = sinh(kappa t) / kappa with kappa^2 = -delta^2 (over-damped). In every
+// case C' = -delta^2 S and S' = C, so the free response is
+//     z  = (ec + alpha es) z0 + es z0'
+//     z' = -w2 es z0 + (ec - alpha es) z0'
+// continuous in delta^2 through critical damping.
+struct DampedModal {
+  double ec, es;
+  DampedModal(double w2, double c, double t) {
+    const double alpha = 0.5 * c, d2 = w2 - alpha * alpha;
+    if (d2 > 0) {
+      const double d = std::sqrt(d2), E = std::exp(-alpha * t);
+      ec = E * std::cos(d * t), es = E * std::sin(d * t) / d;
+    } else if (d2 == 0) {
+      const double E = std::exp(-alpha * t);
+      ec = E, es = E * t;
+    } else {
+      const double kappa = std::sqrt(-d2);
+      if (kappa * t < 1) {
+        const double E = std::exp(-alpha * t);
+        ec = E * std::cosh(kappa * t), es = E * std::sinh(kappa * t) / kappa;
+      } else {
+        // The two exponentials apart: e^{-alpha t} cosh(kappa t) would overflow.
+        const double slow = std::exp((kappa - alpha) * t), fast = std::exp(-(kappa + alpha) * t);
+        ec = 0.5 * (slow + fast), es = (slow - fast) / (2 * kappa);
+      }
     }
-    const double w = std::sqrt(w2), half = std::sin(0.5 * w * t);
-    c = std::cos(w * t), s = std::sin(w * t) / w, r = 2 * half * half / w2;
   }
 };
 
+// Zero-state response R of R'' + c R' = 1 (a rigid mode under a unit load)
+// and R'; R'' = e^{-c t}.
+void rigid_response(double c, double t, double& R, double& Rd) {
+  const double x = c * t;
+  if (x == 0) {
+    R = 0.5 * t * t, Rd = t;
+    return;
+  }
+  Rd = -std::expm1(-x) / c;
+  // R = t^2 phi(x), phi(x) = (x - 1 + e^{-x}) / x^2 = sum_n (-x)^n / (n + 2)!
+  double phi = 0;
+  if (x < 0.1) {
+    double term = 0.5;
+    for (int k = 0; k < 16; ++k) phi += term, term *= -x / (k + 3);
+  } else {
+    phi = (x + std::expm1(-x)) / (x * x);
+  }
+  R = t * t * phi;
+}
+
 }  // namespace
 
-RegionFlow::RegionFlow(const Region& region, const Vector& u0, const Vector& v0) : r_(region) {
-  const Matrix PhiTM = r_.modes.transpose() * r_.M;
-  q0_ = PhiTM * u0;
-  w0_ = PhiTM * v0;
-  p_ = r_.modes.transpose() * r_.f;
+Vector FlowForcing::at(double t) const {
+  Vector f = Vector::Zero(load.empty() ? 0 : load.front().size());
+  for (std::size_t k = 0; k < load.size(); ++k)
+    f += (load[k] * std::exp(Complex(0, Omega[k] * t))).real();
+  return f;
+}
 
-  // h(t) = d + G q(t), G = H Phi; oscillating modes give the trig terms,
-  // rigid ones (w = 0) the quadratic.
-  const Matrix G = r_.H * r_.modes;
-  const Index n = q0_.size(), rows = G.rows();
-  Index terms = 0;
-  for (Index k = 0; k < n; ++k) terms += r_.omega2(k) > 0;
-  h_.c = r_.d;
-  h_.p = Vector::Zero(rows);
-  h_.q = Vector::Zero(rows);
-  h_.a.resize(rows, terms);
-  h_.b.resize(rows, terms);
-  h_.nu.resize(terms);
-  Index j = 0;
-  for (Index k = 0; k < n; ++k) {
-    const double w2 = r_.omega2(k);
-    if (w2 == 0) {
-      h_.c += q0_(k) * G.col(k);
-      h_.p += w0_(k) * G.col(k);
-      h_.q += (0.5 * p_(k)) * G.col(k);
-      continue;
-    }
-    const double w = std::sqrt(w2), rest = p_(k) / w2;
-    h_.c += rest * G.col(k);
-    h_.a.col(j) = (q0_(k) - rest) * G.col(k);
-    h_.b.col(j) = (w0_(k) / w) * G.col(k);
-    h_.nu(j++) = w;
+RegionFlow::RegionFlow(const Region& region, const FlowForcing& forcing, const Vector& u0,
+                       const Vector& v0, double t0)
+    : r_(region), t0_(t0), Omega_(forcing.Omega) {
+  const Index n = u0.size(), harmonics = static_cast<Index>(Omega_.size());
+  PhiTM_ = r_.modes.transpose() * r_.M;
+  const Vector q0 = PhiTM_ * u0, qd0 = PhiTM_ * v0;
+  const Vector p = r_.modes.transpose() * r_.f;
+  c_ = (forcing.a_M + forcing.b_K * r_.omega2.array()).matrix();
+  stationary_ = Vector::Zero(n);
+  rigid_load_ = Vector::Zero(n);
+  for (Index j = 0; j < n; ++j) {
+    if (r_.omega2(j) > 0)
+      stationary_(j) = p(j) / r_.omega2(j);
+    else
+      rigid_load_(j) = p(j);
   }
+
+  // Steady response to each harmonic (method.md §9), as amplitudes at local
+  // time 0: Q_jk = P_jk exp(i Omega_k t0) / (w_j^2 - Omega_k^2 + i c_j Omega_k).
+  const Eigen::MatrixXcd PhiT = r_.modes.transpose().cast<Complex>();
+  Q_.resize(n, harmonics);
+  z0_ = q0 - stationary_;
+  zd0_ = qd0;
+  for (Index k = 0; k < harmonics; ++k) {
+    const double W = Omega_[k];
+    const Eigen::VectorXcd P = PhiT * forcing.load[k];
+    const Complex phase = std::exp(Complex(0, W * t0));
+    for (Index j = 0; j < n; ++j) {
+      const Complex denominator(r_.omega2(j) - W * W, c_(j) * W);
+      if (std::abs(denominator) <= 1e-14 * std::max(r_.omega2(j), W * W) && P(j) != 0.0)
+        throw NumericalError("exact flow: undamped mode " + std::to_string(j) +
+                             " of the region is in resonance with harmonic " +
+                             std::to_string(k + 1) + " of the load (no periodic response)");
+      Q_(j, k) = std::abs(denominator) == 0 ? Complex(0) : P(j) * phase / denominator;
+    }
+    z0_ -= Q_.col(k).real();
+    zd0_ += W * Q_.col(k).imag();  // minus Re(i W Q)
+  }
+
+  G_ = r_.H * r_.modes;
+  G_abs_ = G_.cwiseAbs();
+  forced_bound_ = G_abs_ * rigid_load_.cwiseAbs();
+  const Eigen::MatrixXcd Gc = G_.cast<Complex>();
+  for (Index k = 0; k < harmonics; ++k)
+    forced_bound_ += (Omega_[k] * Omega_[k]) * (Gc * Q_.col(k)).cwiseAbs();
+}
+
+void RegionFlow::free_response(double t, Vector& z, Vector& zd) const {
+  const Index n = z0_.size();
+  z.resize(n);
+  zd.resize(n);
+  for (Index j = 0; j < n; ++j) {
+    const double w2 = r_.omega2(j), alpha = 0.5 * c_(j);
+    const DampedModal m(w2, c_(j), t);
+    z(j) = (m.ec + alpha * m.es) * z0_(j) + m.es * zd0_(j);
+    zd(j) = -w2 * m.es * z0_(j) + (m.ec - alpha * m.es) * zd0_(j);
+  }
+}
+
+const RegionFlow::ModalState& RegionFlow::modal(double t) const {
+  if (t == last_.t) return last_;
+  ModalState& m = last_;
+  m.t = t;
+  free_response(t, m.z, m.zd);
+  m.q = stationary_ + m.z;
+  m.qd = m.zd;
+  m.qdd = -(c_.cwiseProduct(m.zd) + r_.omega2.cwiseProduct(m.z));
+  for (Index j = 0; j < m.q.size(); ++j) {
+    if (r_.omega2(j) > 0 || rigid_load_(j) == 0) continue;
+    double R, Rd;
+    rigid_response(c_(j), t, R, Rd);
+    m.q(j) += rigid_load_(j) * R;
+    m.qd(j) += rigid_load_(j) * Rd;
+    m.qdd(j) += rigid_load_(j) * std::exp(-c_(j) * t);
+  }
+  for (Index k = 0; k < Q_.cols(); ++k) {
+    const double W = Omega_[k];
+    const Eigen::VectorXcd Qt = Q_.col(k) * std::exp(Complex(0, W * t));
+    m.q += Qt.real();
+    m.qd -= W * Qt.imag();
+    m.qdd -= (W * W) * Qt.real();
+  }
+  return m;
 }
 
 void RegionFlow::state(double t, Vector& u, Vector& v) const {
-  const Index n = q0_.size();
-  Vector q(n), qd(n);
-  for (Index k = 0; k < n; ++k) {
-    const ModalFunctions m(r_.omega2(k), t);
-    q(k) = m.c * q0_(k) + m.s * w0_(k) + m.r * p_(k);
-    qd(k) = -r_.omega2(k) * m.s * q0_(k) + m.c * w0_(k) + m.s * p_(k);
+  const ModalState& m = modal(t);
+  u = r_.modes * m.q;
+  v = r_.modes * m.qd;
+}
+
+Vector RegionFlow::value(double t) const { return r_.d + G_ * modal(t).q; }
+
+Vector RegionFlow::rate(double t) const { return G_ * modal(t).qd; }
+
+Vector RegionFlow::curvature(double t) const { return G_ * modal(t).qdd; }
+
+Vector RegionFlow::curvature_bound(double t) const {
+  const ModalState& m = modal(t);
+  const Vector energy = m.zd.cwiseAbs2() + r_.omega2.cwiseProduct(m.z.cwiseAbs2());
+  const Vector per_mode =
+      (c_.cwiseAbs2() + r_.omega2).cwiseSqrt().cwiseProduct(energy.cwiseSqrt());
+  return forced_bound_ + G_abs_ * per_mode;
+}
+
+Vector RegionFlow::magnitude(double span) const {
+  const Index n = z0_.size();
+  Vector m = stationary_.cwiseAbs() + Q_.cwiseAbs().rowwise().sum();
+  for (Index j = 0; j < n; ++j) {
+    const double w2 = r_.omega2(j);
+    m(j) += w2 > 0 ? std::sqrt((zd0_(j) * zd0_(j) + w2 * z0_(j) * z0_(j)) / w2)
+                   : std::abs(z0_(j)) + span * std::abs(zd0_(j)) +
+                         0.5 * span * span * std::abs(rigid_load_(j));
   }
-  u = r_.modes * q;
-  v = r_.modes * qd;
+  return r_.d.cwiseAbs() + G_abs_ * m;
 }
 
 Matrix RegionFlow::transition(double t) const {
-  const Index n = q0_.size();
-  Vector c(n), s(n), ls(n);
-  for (Index k = 0; k < n; ++k) {
-    const ModalFunctions m(r_.omega2(k), t);
-    c(k) = m.c, s(k) = m.s, ls(k) = -r_.omega2(k) * m.s;
+  const Index n = z0_.size();
+  Vector uu(n), uv(n), vu(n), vv(n);
+  for (Index j = 0; j < n; ++j) {
+    const double w2 = r_.omega2(j), alpha = 0.5 * c_(j);
+    const DampedModal m(w2, c_(j), t);
+    uu(j) = m.ec + alpha * m.es, uv(j) = m.es, vu(j) = -w2 * m.es, vv(j) = m.ec - alpha * m.es;
   }
-  const Matrix PhiTM = r_.modes.transpose() * r_.M;
   Matrix X(2 * n, 2 * n);
-  X.topLeftCorner(n, n) = r_.modes * c.asDiagonal() * PhiTM;
-  X.topRightCorner(n, n) = r_.modes * s.asDiagonal() * PhiTM;
-  X.bottomLeftCorner(n, n) = r_.modes * ls.asDiagonal() * PhiTM;
-  X.bottomRightCorner(n, n) = X.topLeftCorner(n, n);
+  X.topLeftCorner(n, n) = r_.modes * uu.asDiagonal() * PhiTM_;
+  X.topRightCorner(n, n) = r_.modes * uv.asDiagonal() * PhiTM_;
+  X.bottomLeftCorner(n, n) = r_.modes * vu.asDiagonal() * PhiTM_;
+  X.bottomRightCorner(n, n) = r_.modes * vv.asDiagonal() * PhiTM_;
   return X;
 }
 
+ExactFlow::ExactFlow(const ReducedField& field, const Damping& damping, const HarmonicLoad& load)
+    : field_(field) {
+  if (damping.has_matrix())
+    throw InputError("exact flow: an assembled damping matrix is not supported yet (its reduced "
+                     "form does not decouple on the modes of a region); give Rayleigh "
+                     "coefficients a_M, b_K");
+  if (!(damping.a_M >= 0) || !(damping.b_K >= 0) || !std::isfinite(damping.a_M) ||
+      !std::isfinite(damping.b_K))
+    throw InputError("exact flow: the Rayleigh coefficients a_M, b_K must be finite and >= 0");
+  forcing_.a_M = damping.a_M;
+  forcing_.b_K = damping.b_K;
+  const int harmonics = load.harmonics();
+  if (harmonics > 0 && (!(load.omega > 0) || !std::isfinite(load.omega)))
+    throw InputError("exact flow: the excitation frequency omega must be finite and > 0");
+  const Index N = field.n_internal();
+  // Harmonic k of cos or sin (zero if the list is shorter), checked.
+  auto harmonic = [&](const std::vector<Vector>& list, const char* name, int k) -> Vector {
+    if (static_cast<std::size_t>(k) >= list.size()) return Vector::Zero(N);
+    const Vector& x = list[k];
+    const std::string which =
+        std::string("exact flow: load harmonic ") + name + "[" + std::to_string(k) + "]";
+    if (x.size() != N)
+      throw InputError(which + " has " + std::to_string(x.size()) + " entries, expected " +
+                       std::to_string(N));
+    if (!x.allFinite()) throw InputError(which + " has non-finite entries");
+    if (!x(field.contact()).isZero(0.0))
+      throw InputError(which + " is non-zero on a contact dof (time-varying loads on the "
+                       "contact dofs are not supported by the exact flow yet)");
+    return x;
+  };
+  for (int k = 0; k < harmonics; ++k) {
+    const Vector c = harmonic(load.cos, "cos", k), s = harmonic(load.sin, "sin", k);
+    forcing_.Omega.push_back((k + 1) * load.omega);
+    forcing_.load.push_back(c(field.interior()).cast<std::complex<double>>() -
+                            std::complex<double>(0, 1) *
+                                s(field.interior()).cast<std::complex<double>>());
+  }
+}
+
+Vector ExactFlow::acceleration(const Region& region, const Vector& u, const Vector& v,
+                               double t) const {
+  // M_S u'' = f_S + F_h(t) - K_S u - (a_M M_S + b_K K_S) u'.
+  Vector rhs = region.f - region.K * (u + forcing_.b_K * v);
+  if (!forcing_.load.empty()) rhs += forcing_.at(t);
+  return region.mass.solve(rhs) - forcing_.a_M * v;
+}
+
 FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bool sensitivity,
-                                const std::vector<double>& sample_times) const {
+                                const std::vector<double>& sample_times, double t0) const {
   const Index n = field_.size();
   if (u0.size() != n || v0.size() != n)
     throw InputError("exact flow: initial state of size " + std::to_string(u0.size()) +
                      ", expected " + std::to_string(n));
   if (!(T >= 0) || !std::isfinite(T)) throw InputError("exact flow: the time span must be >= 0");
+  if (!std::isfinite(t0)) throw InputError("exact flow: the start time must be finite");
   FlowResult out;
   out.u = u0;
   out.v = v0;
@@ -110,7 +276,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
                            " switches (Zeno behaviour?)");
     const auto held = field_.region(out.active);
     const Region& region = *held;
-    const RegionFlow piece(region, out.u, out.v);
+    const RegionFlow piece(region, forcing_, out.u, out.v, t0 + t);
     const auto crossing = first_crossing(piece.switching(), 0, T - t);
     const double tau = crossing ? crossing->t : T - t;
     for (; next_sample < sample_times.size() && sample_times[next_sample] <= t + tau;
@@ -127,8 +293,10 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     const ActiveSet next = field_.switched(region, out.u, out.v, crossing->row);
     if (sensitivity) {
       // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f-) with
-      // n = (H_j, 0), f = (v, a); only the acceleration jumps.
-      const Vector jump = field_.region(next)->acceleration(out.u) - region.acceleration(out.u);
+      // n = (H_j, 0), f = (v, a); only the acceleration jumps (with the mass
+      // of the contact dofs, or a stiffness-proportional damping).
+      const Vector jump = acceleration(*field_.region(next), out.u, out.v, t0 + t) -
+                          acceleration(region, out.u, out.v, t0 + t);
       const double rate = region.H.row(crossing->row).dot(out.v);
       if (jump.norm() > 0 && rate != 0)
         out.monodromy.bottomRows(n) +=
@@ -137,7 +305,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     out.switches.push_back({t, crossing->row, next});
     out.active = next;
   }
-  out.a = field_.region(out.active)->acceleration(out.u);
+  out.a = acceleration(*field_.region(out.active), out.u, out.v, t0 + T);
   return out;
 }
 

@@ -1,32 +1,85 @@
-// The exact flow of the reduced NBM equations (reduced_field.hpp): modal
-// solution on each region, switching times by root finding on the switching
-// functions (trig_sum.hpp), and the state-transition (monodromy) matrix with
-// saltation terms where the acceleration jumps (mass on the contact dofs).
+// The exact flow of the reduced NBM equations (reduced_field.hpp), with
+// Rayleigh damping and a harmonic load (method.md §6, §9): modal solution on
+// each region, switching times by rigorous root finding on the switching
+// functions (switching.hpp), and the state-transition (monodromy) matrix
+// with saltation terms where the acceleration jumps.
 #pragma once
 
+#include <complex>
+#include <limits>
 #include <vector>
 
+#include "damping.hpp"
+#include "harmonic_load.hpp"
 #include "reduced_field.hpp"
-#include "trig_sum.hpp"
+#include "switching.hpp"
 
 namespace nbm {
 
-/// The flow on one region from (u0, v0) at local time 0. In the modal
-/// coordinates q = Phi^T M_S u of the region every mode obeys
-/// q'' + w^2 q = p, solved in closed form.
-class RegionFlow {
+/// What the region flows need of the excitation: the Rayleigh coefficients
+/// (C_S = a_M M_S + b_K K_S on every region, method.md §9) and the
+/// harmonics of the load on the interior dofs, F_O(t) - F0_O =
+/// sum_k Re(load_k exp(i Omega_k t)) with load_k = cos_k - i sin_k.
+struct FlowForcing {
+  double a_M = 0, b_K = 0;
+  std::vector<double> Omega;
+  std::vector<Eigen::VectorXcd> load;
+  /// The harmonic part of the interior load at time t.
+  Vector at(double t) const;
+};
+
+/// The flow on one region from (u0, v0) at absolute time t0 (local time 0).
+/// In the modal coordinates q = Phi^T M_S u of the region every mode obeys
+///     q'' + c q' + w^2 q = p + sum_k Re(P_k exp(i Omega_k t)),
+/// c = a_M + b_K w^2, solved in closed form: a stationary (or, for a rigid
+/// mode, zero-state) response to p, a steady harmonic response
+/// P_k / (w^2 - Omega_k^2 + i c Omega_k) per harmonic, and the damped free
+/// response (under-, critically or over-damped) of what remains. The
+/// region's switching functions h(t) = H u(t) + d are this object's.
+class RegionFlow : public SwitchingFunctions {
  public:
-  RegionFlow(const Region& region, const Vector& u0, const Vector& v0);
+  /// Throws NumericalError if an undamped mode is in resonance with a
+  /// harmonic of the load (no periodic particular solution).
+  RegionFlow(const Region& region, const FlowForcing& forcing, const Vector& u0, const Vector& v0,
+             double t0 = 0);
   void state(double t, Vector& u, Vector& v) const;
-  /// The switching functions h(t) = H u(t) + d of the region.
-  const TrigSum& switching() const { return h_; }
-  /// d(u, v)(t) / d(u0, v0): 2n x 2n.
+  const SwitchingFunctions& switching() const { return *this; }
+  /// d(u, v)(t) / d(u0, v0): 2n x 2n (the load does not enter it).
   Matrix transition(double t) const;
 
+  Index rows() const override { return r_.d.size(); }
+  Vector value(double t) const override;
+  Vector rate(double t) const override;
+  Vector curvature(double t) const override;
+  /// sum_j |G_j| sqrt(c_j^2 + w_j^2) sqrt(E_j(t)), with E_j = z'^2 + w^2 z^2
+  /// the energy of mode j's free response z (non-increasing: E' = -2 c z'^2),
+  /// plus the bounds of the forced and rigid-mode parts; G = H Phi.
+  Vector curvature_bound(double t) const override;
+  Vector magnitude(double span) const override;
+
  private:
+  /// Modal state at local time t: free response (z, z') and full
+  /// (q, q', q''). The switching search asks value, rate and bound at the
+  /// same t in a row: the last evaluation is kept.
+  struct ModalState {
+    double t = std::numeric_limits<double>::quiet_NaN();
+    Vector z, zd, q, qd, qdd;
+  };
+  const ModalState& modal(double t) const;
+  void free_response(double t, Vector& z, Vector& zd) const;
+
   const Region& r_;
-  Vector q0_, w0_, p_;
-  TrigSum h_;
+  double t0_;
+  Vector c_;                 ///< modal damping a_M + b_K w^2
+  Vector stationary_;        ///< p / w^2 (0 on rigid modes)
+  Vector rigid_load_;        ///< p on rigid modes (0 elsewhere)
+  Vector z0_, zd0_;          ///< initial state of the free response
+  std::vector<double> Omega_;
+  Eigen::MatrixXcd Q_;       ///< n x harmonics: steady modal amplitudes at local time 0
+  Matrix G_, G_abs_;         ///< H Phi and |H Phi|
+  Vector forced_bound_;      ///< per row: sum_k Omega_k^2 |(G Q_k)_r| + sum_rigid |G_rj p_j|
+  Matrix PhiTM_;
+  mutable ModalState last_;
 };
 
 struct SwitchEvent {
@@ -47,16 +100,30 @@ struct FlowResult {
 
 class ExactFlow {
  public:
+  /// The undamped flow under the field's constant load.
   explicit ExactFlow(const ReducedField& field) : field_(field) {}
-  /// Flows (u0, v0) over [0, T]. With `sensitivity`, also the monodromy
-  /// matrix. `sample_times` (sorted, in [0, T]) asks for the state there.
-  /// Throws NumericalError on more than 100000 switches (Zeno behaviour).
+  /// With damping and a harmonic load (harmonic_load.hpp). Throws
+  /// InputError on negative or non-finite Rayleigh coefficients, on an
+  /// assembled damping matrix (not supported by the exact flow yet: its
+  /// reduced form does not decouple on the modes, method.md §9), on
+  /// harmonics of the wrong size, non-finite, or non-zero on a contact dof,
+  /// and on omega <= 0 with harmonics.
+  ExactFlow(const ReducedField& field, const Damping& damping, const HarmonicLoad& load);
+  /// Flows (u0, v0) from the absolute time t0 over [t0, t0 + T] (sample and
+  /// switch times are counted from t0). With `sensitivity`, also the
+  /// monodromy matrix. `sample_times` (sorted, in [0, T]) asks for the state
+  /// there. Throws NumericalError on more than 100000 switches (Zeno
+  /// behaviour).
   FlowResult integrate(const Vector& u0, const Vector& v0, double T, bool sensitivity,
-                       const std::vector<double>& sample_times = {}) const;
+                       const std::vector<double>& sample_times = {}, double t0 = 0) const;
+  /// u_O'' at (u_O, v_O) and absolute time t on a given region.
+  Vector acceleration(const Region& region, const Vector& u, const Vector& v, double t) const;
   const ReducedField& field() const { return field_; }
+  const FlowForcing& forcing() const { return forcing_; }
 
  private:
   const ReducedField& field_;
+  FlowForcing forcing_;
 };
 
 }  // namespace nbm

@@ -32,7 +32,8 @@ GaussNewtonResult gauss_newton(const GaussNewtonFunction& evaluate, Vector y,
     // Trust region on the period-like unknown: at most 20% change per step.
     const Index iT = o.period_index;
     double damping =
-        std::min(1.0, 0.2 * std::abs(y(iT)) / std::max(std::abs(step(iT)), periodic_tiny));
+        iT < 0 ? 1.0
+               : std::min(1.0, 0.2 * std::abs(y(iT)) / std::max(std::abs(step(iT)), periodic_tiny));
     GaussNewtonEvaluation trial = evaluate(y + damping * step, false);
     while (!(trial.size < e.size) && damping > 1.0 / 1024) {
       damping /= 2;

@@ -36,7 +36,9 @@ struct GaussNewtonOptions {
     orthogonal,  ///< complete orthogonal decomposition (rank-deficient J)
     householder  ///< Householder QR if J has more rows than columns, else LU
   };
-  Index period_index = 0;  ///< the period-like unknown of the trust region
+  /// The period-like unknown of the trust region; -1: none (a forced orbit,
+  /// whose period the excitation fixes).
+  Index period_index = 0;
   double tolerance = 1e-12;
   int max_iterations = periodic_max_iterations;
   Solver solver = Solver::orthogonal;

@@ -8,6 +8,7 @@
 
 
 #include "errors.hpp"
+#include "trig_sum.hpp"
 
 namespace nbm {
 namespace {

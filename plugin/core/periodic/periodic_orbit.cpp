@@ -38,11 +38,15 @@ std::vector<std::complex<double>> floquet_multipliers(const Matrix& monodromy, c
 }
 
 void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit) {
+  analyse_orbit(ExactFlow(field), orbit, true);
+}
+
+void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous) {
+  const ReducedField& field = flow.field();
   const double T = orbit.period;
   constexpr int kSamples = 256;
   std::vector<double> times(kSamples);
   for (int k = 0; k < kSamples; ++k) times[k] = T * k / kSamples;
-  const ExactFlow flow(field);
   const FlowResult r = flow.integrate(orbit.u0, orbit.v0, T, true, times);
 
   const double u_scale = std::max(orbit.u0.norm(), 1e-300);
@@ -70,9 +74,18 @@ void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit) {
   if (any_closed(current)) orbit.contact_time += T - t_prev;
 
   orbit.monodromy = r.monodromy;
-  orbit.multipliers = floquet_multipliers(r.monodromy, orbit.v0, field.acceleration(orbit.u0),
+  if (autonomous) {
+    orbit.multipliers = floquet_multipliers(r.monodromy, orbit.v0, field.acceleration(orbit.u0),
+                                            orbit.trivial_residual);
+    orbit.stable = std::abs(orbit.multipliers.front()) <= 1 + 1e-6;
+    return;
+  }
+  // Forced: no time shift leaves the orbit invariant, so no trivial
+  // multiplier to split off.
+  orbit.trivial_residual = 0;
+  orbit.multipliers = floquet_multipliers(r.monodromy, Vector::Zero(n), Vector::Zero(n),
                                           orbit.trivial_residual);
-  orbit.stable = std::abs(orbit.multipliers.front()) <= 1 + 1e-6;
+  orbit.stable = std::abs(orbit.multipliers.front()) < 1;
 }
 
 std::string summary(const PeriodicOrbit& orbit) {

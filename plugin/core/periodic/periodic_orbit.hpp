@@ -45,6 +45,12 @@ std::vector<std::complex<double>> floquet_multipliers(const Matrix& monodromy, c
 /// Integrates one period from (orbit.u0, orbit.v0) with the exact flow and
 /// fills the verification fields of `orbit`.
 void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit);
+/// The same along a given flow (damped, forced: exact_flow.hpp) from its
+/// time 0. An autonomous orbit gets the trivial multiplier 1 and is stable
+/// if all |multipliers| <= 1 + 1e-6; a forced one (time is not free,
+/// method.md §9) gets the eigenvalues of the monodromy, no trivial
+/// multiplier, trivial_residual 0, and is stable if all |multipliers| < 1.
+void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous);
 
 /// A line per quantity: period, energy, contact time, residuals, multipliers.
 std::string summary(const PeriodicOrbit& orbit);

@@ -149,7 +149,11 @@ std::shared_ptr<const Region> ReducedField::region(const ActiveSet& active) cons
   if (eig.info() != Eigen::Success)
     throw NumericalError("reduced field: eigenvalue problem K_S phi = w^2 M_S phi failed");
   r->omega2 = eig.eigenvalues();
-  const double top = std::max(r->omega2.cwiseAbs().maxCoeff(), 1e-300);
+  // Zero is judged against the largest frequency and against K_OO / M_S:
+  // when every mode of a region is rigid (a free body, one interior dof),
+  // the Schur complement K_S is the round-off of K_OO's cancellation.
+  const double top = std::max({r->omega2.cwiseAbs().maxCoeff(),
+                               K_(O, O).norm() / std::max(r->M.norm(), 1e-300), 1e-300});
   for (Index k = 0; k < n; ++k) {
     // K_S is positive semi-definite: tiny negative eigenvalues are round-off
     // of rigid modes.
