@@ -366,7 +366,7 @@ void plate_sizes(benchmark::internal::Benchmark* b) {
 void scale_sizes(benchmark::internal::Benchmark* b) {
   for (int body : {kPlate, kStrip, kBlock})
     for (int order : {1, 2})
-      for (int dofs : {3000, 10000, 30000, 100000, 300000, 1000000})
+      for (int dofs : {3000, 30000, 100000, 300000, 1000000})
         for (int pct : {6, 12, 25, 50, 100, 200}) b->Args({body, order, dofs, pct});
   b->ArgNames({"body", "order", "dofs", "contact_pct"})->Unit(benchmark::kMicrosecond);
 }
