@@ -128,10 +128,12 @@ std::vector<Tetrahedron> kuhn_elements(const Block& b) {
 }  // namespace
 
 Block Block::with_dofs(int order, double dofs) {
-  // 3 (4 o nz + 1)^2 (o nz + 1) ~ 48 (o nz)^3.
+  // The nz whose 3 (4 o nz + 1)^2 (o nz + 1) dofs are closest to `dofs`.
   Block b;
   b.order = order;
-  b.nz = std::max(1, static_cast<int>(std::lround(std::cbrt(dofs / 48.0) / order)));
+  auto count = [&](int nz) { return 3.0 * std::pow(4 * order * nz + 1, 2) * (order * nz + 1); };
+  b.nz = 1;
+  while (std::abs(count(b.nz + 1) - dofs) < std::abs(count(b.nz) - dofs)) ++b.nz;
   b.nx = b.ny = 4 * b.nz;
   return b;
 }

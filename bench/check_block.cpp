@@ -1,8 +1,9 @@
 // Sanity of the 3D benchmark matrices (bench/block.cpp), P1 and P2: the six
 // rigid motions are in the kernel of K, mass and load are those of the
 // block, uniform strains have their exact elastic energy, and the contact
-// regions (bench/contact_region.cpp) hold the nodes they should. Exit code 1
+// regions (bench/contact_region.cpp) hold the nodes and gaps they should. Exit code 1
 // on a failure.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -65,6 +66,15 @@ int main() {
     region.fraction = 1.0 / 3;
     check("contact nodes of a third of the bottom face",
           nbm_bench::contact_on(X, region).gaps.size(), (order + 1.0) * b.nodes_y(), 0);
+    // Inclined obstacle: gap g0 + slope (x + tilt y), largest at the far corner.
+    region.fraction = 1;
+    region.gap = 0.5;
+    region.slope = 2;
+    const nbm::ContactDescription inclined = nbm_bench::contact_on(X, region);
+    check("largest gap of the inclined obstacle",
+          *std::max_element(inclined.gaps.begin(), inclined.gaps.end()),
+          0.5 + 2 * (b.Lx + region.tilt * b.Ly), 1e-12);
+    check("sweep length", nbm_bench::sweep_length(X, region), b.Lx + region.tilt * b.Ly, 1e-12);
   }
   std::printf("block assembly: %d failed\n", failures);
   return failures ? 1 : 0;

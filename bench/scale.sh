@@ -16,10 +16,15 @@
 #     nodes), which may not finish with today's core: every benchmark process
 #     is stopped after TIMEOUT seconds (default 900) and reported as such.
 #   ROUNDS (default 1): rounds per benchmark, the fastest kept.
+#   REPORT_ONLY=1: no run, the section written again from SECTION's raw data
+#     (e.g. after a run stopped by hand).
+#   CLOCK=cpu: the ratios from the CPU time of the benchmark's thread instead
+#     of the wall-clock time (default real): on a machine loaded by other work,
+#     with OPENBLAS_NUM_THREADS=1 (the only thread then does all the work).
 # The build is expected (bench/run.sh builds); OPENBLAS_NUM_THREADS is passed on.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
-default_cases="1:1:100000:6,12,25,50,100 0:1:100000:25,50,100,200 2:1:30000:6,12,25,50,100,200 2:2:30000:25,100"
+default_cases="0:1:100000:25,50,100,200 1:1:100000:6,12,25,50,100 2:1:30000:6,12,25,50,100,200 2:2:30000:25,100"
 cases=${1:-$default_cases}
 if [ "${SCALE_MILLION:-0}" = 1 ]; then cases="$cases 2:1:1000000:100"; fi
 section=${2:-"$repo/out/bench/scale.md"}
@@ -32,8 +37,9 @@ timeout=${TIMEOUT:-900}
 plain=(ScalePlainNewmarkStep ScalePlainExplicitStep ScalePlainFactorization)
 nbm=(ScaleNbmSetup ScaleNbmNewmarkStepFreeFlight ScaleNbmNewmarkStepSweep ScaleNbmMasslessStepFreeFlight
      ScaleNbmMasslessStepSweep ScaleNbmExplicitStepFreeFlight ScaleNbmExplicitStepSweep ScalePenaltyStepSweep)
-header="name,body,order,dofs_arg,pct,dofs,contacts,time_us,held_mb,switch_steps,fallbacks,penalty_factor_us,peak_rss_mb"
-echo "$header" > "$raw.rounds"
+clock=${CLOCK:-real}
+header="name,body,order,dofs_arg,pct,dofs,contacts,time_us,held_mb,switch_steps,fallbacks,penalty_factor_us,peak_rss_mb,real_us,cpu_us"
+[ "${REPORT_ONLY:-0}" = 1 ] || echo "$header" > "$raw.rounds"
 blas=$("$bench" --blas)
 load=$(cut -d' ' -f1 /proc/loadavg)
 start=$SECONDS
@@ -44,25 +50,27 @@ run() {
   local name=$1 body=$2 order=$3 dofs=$4 pct=$5 out="$work/$1-$2-$3-$4-$5.csv"
   local filter="^BM_$name/body:$body/order:$order/dofs:$dofs/contact_pct:$pct(/|\$)"
   if ! timeout "$timeout" "$bench" --benchmark_filter="$filter" --benchmark_format=csv \
-         --benchmark_min_time=0.5 > "$out" 2> "$out.err" || ! grep -q '^"BM_' "$out"; then
-    echo "$name,$body,$order,$dofs,$pct,,,NA,,,,," >> "$raw.rounds"
-    echo "scale: $name $body:$order:$dofs:$pct failed or took more than $timeout s" >&2
+         --benchmark_min_time=0.5 > "$out" 2> "$out.err" || ! grep -q '^"BM_' "$out" ||
+       grep -q '^"BM_.*,true,' "$out"; then  # no result, or error_occurred (SkipWithError)
+    echo "$name,$body,$order,$dofs,$pct,,,NA,,,,,,," >> "$raw.rounds"
+    echo "scale: $name $body:$order:$dofs:$pct failed, was skipped or took more than $timeout s" >&2
     return
   fi
   # Google Benchmark's CSV: name,iterations,real_time,cpu_time,time_unit,...,
   # then the counters; columns found by their header.
-  awk -F, -v n="$name" -v b="$body" -v o="$order" -v d="$dofs" -v p="$pct" '
+  awk -F, -v n="$name" -v b="$body" -v o="$order" -v d="$dofs" -v p="$pct" -v clock="$clock" '
     /^name,/ { for (i = 1; i <= NF; i++) { h = $i; gsub(/"/, "", h); col[h] = i }; next }
     /^"BM_/ {
-      t = $col["real_time"]; u = $col["time_unit"]
-      if (u == "ms") t *= 1000; else if (u == "ns") t /= 1000; else if (u == "s") t *= 1e6
-      printf "%s,%s,%s,%s,%s,%d,%d,%.6g,%.3f,%s,%s,%s,%.0f\n", n, b, o, d, p, $col["dofs"],
-             $col["contacts"], t, $col["held_MB"], get("switch_steps"), get("fallbacks"),
-             get("penalty_factor_us"), $col["peak_rss_MB"]
+      u = $col["time_unit"]; f = (u == "ms") ? 1000 : (u == "ns") ? 1e-3 : (u == "s") ? 1e6 : 1
+      real = $col["real_time"] * f; cpu = $col["cpu_time"] * f
+      printf "%s,%s,%s,%s,%s,%d,%d,%.6g,%.3f,%s,%s,%s,%.0f,%.6g,%.6g\n", n, b, o, d, p, $col["dofs"],
+             $col["contacts"], clock == "cpu" ? cpu : real, $col["held_MB"], get("switch_steps"),
+             get("fallbacks"), get("penalty_factor_us"), $col["peak_rss_MB"], real, cpu
     }
     function get(c) { return (c in col) ? $col[c] : "" }' "$out" >> "$raw.rounds"
 }
 
+[ "${REPORT_ONLY:-0}" = 1 ] && rounds=0
 for round in $(seq "$rounds"); do
   for c in $cases; do
     IFS=: read -r body order dofs pcts <<< "$c"
@@ -85,18 +93,19 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
   echo "## Large contact sets and 3D (issue 14)"
   echo
   echo "Produced by \`bash bench/scale.sh${1:+ \"$1\"}\`$([ "${SCALE_MILLION:-0}" = 1 ] && echo " with SCALE_MILLION=1") on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD),"
-  echo "$rounds round(s), $((SECONDS - start)) s; load average when it started: $load on $(nproc) cores."
-  echo "BLAS: $blas."
+  echo "$rounds round(s), $((SECONDS - start)) s; load average when it started: $load on $(nproc) cores (above about 0.5: ratios perturbed by other work)."
+  echo "BLAS: $blas. Times: $([ "$clock" = cpu ] && echo "CPU time of the benchmark thread (CLOCK=cpu)" || echo "wall clock")."
   echo "Bodies: the plate (bench/plate.cpp, W/H = 2), the strip (the same, W/H = 80), the block"
   echo "(bench/block.cpp: tetrahedra, nx = ny = 4 nz cells, bottom face 1 x 1). Contact: pct % of the"
   echo "bottom face (along x), or 200: bottom and top faces (the top nodes never touch). Sweep: the"
-  echo "body falls at 0.1 onto an obstacle inclined along x, so that the contact front crosses the"
+  echo "body falls at 0.1 onto an obstacle inclined along x (3D: along x + y/4), so that the contact front crosses the"
   echo "contact set in 20 steps (implicit dt = 2e-4; explicit: half the critical step of the row-sum"
   echo "lumped mass, the same for the plain explicit step); time per step over those 20 steps, memory"
   echo "held after them. Free flight: the obstacle out of reach. Penalty: average-acceleration"
   echo "Newmark with a penalty on the penetrating nodes, refactorising (numerically, the symbolic"
   echo "analysis reused) at every active-set change; break-even: the number of changing steps after"
-  echo "which NBM (setup + steps) costs less than the penalty scheme (factorization + steps)."
+  echo "which NBM (setup + steps) costs less than the penalty scheme (a plain factorization + steps)."
+  echo "Explicit schemes need a positive row-sum lumped mass, which P2 tetrahedra do not have: '-'."
   echo "Ratios against the plain contact-free step of the same matrices, same run. Raw data:"
   echo "${raw#"$repo"/} (times in us, memory in MB: held = heap growth of the solver objects)."
   echo
@@ -114,10 +123,10 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
         pn = plain["ScalePlainNewmarkStep", k]; pe = plain["ScalePlainExplicitStep", k]
         pfac = plain["ScalePlainFactorization", k]
         sweep = t["ScaleNbmNewmarkStepSweep", k, p]; pen = t["ScalePenaltyStepSweep", k, p]
-        setup = t["ScaleNbmSetup", k, p]; pfactor = pf["ScalePenaltyStepSweep", k, p]
+        setup = t["ScaleNbmSetup", k, p]
         be = "-"
         if (sweep != "NA" && pen != "NA" && setup != "NA" && sweep != "" && pen != "" && setup != "")
-          be = (pen + 0 > sweep + 0) ? sprintf("%.0f", (setup - pfactor) / (pen - sweep)) : "never"
+          be = (pen + 0 > sweep + 0) ? sprintf("%.0f", (setup - pfac) / (pen - sweep)) : "never"
         printf "| %s | P%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
           body[f[1] + 1], f[2], dofs[k], nc[k, p], r(setup, pfac),
           r(m["ScaleNbmNewmarkStepSweep", k, p], pm["ScalePlainNewmarkStep", k]),
@@ -158,7 +167,9 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
         if (!big) row(name ", free flight / plain", t["ScaleNbmNewmarkStepFreeFlight", k, p], pn, 1.2)
         row(name ", setup / factorization", t["ScaleNbmSetup", k, p], plain["ScalePlainFactorization", k], big ? 5 : 3)
         row(name ", memory / plain", m["ScaleNbmNewmarkStepSweep", k, p], pm["ScalePlainNewmarkStep", k], 2)
+        listed++
       }
+      if (!listed) print "(No case of this run is in those ranges.)"
     }' "$raw"
   echo
   echo "### Growth with the contact set at fixed dofs: fitted exponent p of cost ~ n_c^p"
