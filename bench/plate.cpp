@@ -1,5 +1,6 @@
 #include "plate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace nbm_bench {
@@ -48,12 +49,13 @@ int basis(int order, double xi, double eta, double* phi, Vec2* dphi) {
 
 }  // namespace
 
-Plate Plate::with_dofs(int order, double dofs) {
-  // 2 (k nx + 1)(k ny + 1) ~ dofs with nx = 2 ny.
+Plate Plate::with_dofs(int order, double dofs, int aspect) {
+  // 2 (k nx + 1)(k ny + 1) ~ dofs with nx = aspect ny.
   Plate p;
   p.order = order;
-  p.ny = std::max(1, static_cast<int>(std::lround(std::sqrt(dofs / 4.0) / order)));
-  p.nx = 2 * p.ny;
+  p.ny = std::max(1, static_cast<int>(std::lround(std::sqrt(dofs / (2.0 * aspect)) / order)));
+  p.nx = aspect * p.ny;
+  p.W = aspect * p.H;
   return p;
 }
 
@@ -116,17 +118,6 @@ Assembled assemble(const Plate& p) {
   a.K.setFromTriplets(k.begin(), k.end());
   a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
   return a;
-}
-
-nbm::ContactDescription bottom_contact(const Plate& p, double gap) {
-  nbm::ContactDescription c;
-  for (int i = 0; i < p.nodes_x(); ++i) {
-    const int n = p.node(i, 0);
-    c.dofs.insert(c.dofs.end(), {2L * n, 2L * n + 1});
-    c.normals.insert(c.normals.end(), {0.0, -1.0});
-    c.gaps.push_back(gap);
-  }
-  return c;
 }
 
 Eigen::MatrixXd dof_positions(const Plate& p) {

@@ -1,9 +1,9 @@
 // Plane-strain elasticity of a rectangular plate, assembled here for the
 // benchmarks (no FreeFEM, no synthetic matrices): Lagrange P1 or P2 triangles
 // on a structured mesh of nx x ny cells (two triangles each), consistent mass,
-// stiffness and gravity load, and the contact description of the bottom edge
-// against a ground at distance `gap`. Node (i, j) of the (k nx + 1) x (k ny + 1)
-// grid of a Pk mesh has dofs 2 node (x) and 2 node + 1 (y).
+// stiffness and gravity load (bench/contact_region.hpp describes its
+// contacts). Node (i, j) of the (k nx + 1) x (k ny + 1) grid of a Pk mesh has
+// dofs 2 node (x) and 2 node + 1 (y).
 #pragma once
 
 #include <Eigen/Dense>
@@ -28,8 +28,9 @@ struct Plate {
   Eigen::Vector2d position(int i, int j) const {
     return {W * i / (order * nx), H * j / (order * ny)};
   }
-  /// Mesh with about `dofs` degrees of freedom and aspect ratio W/H = 2.
-  static Plate with_dofs(int order, double dofs);
+  /// Mesh with about `dofs` degrees of freedom, square cells and aspect
+  /// ratio W/H = `aspect` (80: the 2000 x 25 strip of issue 14 at 1e5 P1 dofs).
+  static Plate with_dofs(int order, double dofs, int aspect = 2);
 };
 
 struct Assembled {
@@ -38,9 +39,6 @@ struct Assembled {
 };
 
 Assembled assemble(const Plate& p);
-
-/// Every bottom node, outward normal (0, -1), gap `gap`.
-nbm::ContactDescription bottom_contact(const Plate& p, double gap);
 
 /// Node coordinates of every dof (n_dofs x 2), for mass redistribution.
 Eigen::MatrixXd dof_positions(const Plate& p);

@@ -20,6 +20,15 @@
 # (environment, default 3), the benchmarks interleaved within a round, and
 # the report takes each benchmark's fastest round (the spread, slowest /
 # fastest, is in the raw data and the times table). Raw results: out/bench/*.csv.
+#
+# Then bench/scale.sh (issue 14: large contact sets, the 2D strip, the 3D
+# blocks, the sweep in n_c, the penalty break-even; about 1 hour more with its
+# default cases) writes its section of the report; SCALE=0 skips it,
+# SCALE_CASES="..." replaces its cases, SCALE_MILLION=1 adds the 1e6-dof block.
+# The report says which BLAS ran (scripts/install-deps.sh selects OpenBLAS)
+# and with how many threads: OPENBLAS_NUM_THREADS from the environment if set,
+# else OpenBLAS's default (one per core); the benchmarks run one at a time, so
+# its threads have the cores to themselves.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 sizes=${1:-"1000 10000 100000"}
@@ -40,6 +49,7 @@ fi
 rounds=${ROUNDS:-3}
 echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw.rounds"
 load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
+blas=$("$bench" --blas)
 
 names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeFlight
        NbmNewmarkStepBouncing NbmMasslessStepFreeFlight NbmMasslessStepBouncing
@@ -86,6 +96,7 @@ awk -F, -v OFS=, 'NR == 1 { print $0, "spread"; next }
   echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}${2:+ \"$2\"}${3:+ $3}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
   echo "($(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo),"
   echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))."
+  echo "BLAS (CHOLMOD's): $blas."
   echo "Load average when the run started: $load (on $(nproc) cores, anything above about 0.5 means the ratios"
   echo "below are perturbed by other work; rerun on a quiet machine)."
   echo "Plane-strain plate (bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
@@ -175,6 +186,12 @@ set title 'Step time against problem size (P1), bench/run.sh'
 plot for [b in "PlainNewmarkStep NbmNewmarkStepBouncing NbmNewmarkStepFreeFlight NbmMasslessStepBouncing PlainExplicitStep NbmExplicitStepBouncing"] \
   '< awk -F, -v b='.b.' "\\\$1 == b && \\\$2 == 1" $raw' using 3:5 with linespoints lw 2 title b
 GP
+if [ "${SCALE:-1}" != 0 ]; then
+  scale_section="${report%.md}-scale.md"
+  [ "$report" = "$repo/bench/RESULTS.md" ] && scale_section="$work/scale.md"
+  bash "$repo/bench/scale.sh" "${SCALE_CASES:-}" "$scale_section"
+  { echo; cat "$scale_section"; echo; cat "$repo/bench/why-scale.md"; } >> "$report.tmp"
+fi
 if [ "$report" = "$repo/bench/RESULTS.md" ] && [ -f "$repo/bench/million.md" ]; then
   { echo; cat "$repo/bench/million.md"; } >> "$report.tmp"  # the 10^6-dof run, kept as recorded
 fi
