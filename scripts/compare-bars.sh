@@ -5,7 +5,8 @@
 #
 #   bash scripts/compare-bars.sh [-orders "1 2 4"] [-Ns "40 80 160 320"]
 #        [-problems "bouncing clamped"] [-methods "..."] [-jobs 2]
-#        [-maxNk 640] [-out out/compare-bars] [-docs] [-skip-build]
+#        [-maxNk 640] [-out out/compare-bars] [-docs] [-docs-name compare-bars]
+#        [-skip-build]
 #
 # Runs with N k > maxNk (more than maxNk node spacings) are skipped: with
 # -orders "1 2 4", P4 then stops at N = 160 (-maxNk 1280 adds N = 320).
@@ -20,13 +21,16 @@
 #   convergence.png          errors of u(0,t), u, v and the contact force against N
 #   histories.png            u(0,t), v(0,t) of every method against the exact one (coarsest N, P1)
 #   <problem>-<method>-P<k>-N<N>.csv / .log   the runs
-# -docs copies tables.md and the PNGs to docs/compare-bars.md, docs/compare-bars-*.png.
+# -docs copies tables.md and the PNGs to docs/NAME.md, docs/NAME-*.png, NAME from
+# -docs-name (default compare-bars). The P4 tables of the README:
+#   bash scripts/compare-bars.sh -orders 4 -Ns "40 80 160" -out out/compare-bars-P4 \
+#        -docs -docs-name compare-bars-P4
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 . "$repo/scripts/lib.sh"
 orders="1 2" Ns="40 80 160 320" problems="bouncing clamped"
 methods="nbm nbm-massless mj0 mj1 nitsche1 nitsche0 nitsche-1 penalty"
-jobs=2 out="$repo/out/compare-bars" docs=0 build=1 maxNk=640 rerun=0
+jobs=2 out="$repo/out/compare-bars" docs=0 docs_name=compare-bars build=1 maxNk=640 rerun=0
 args="$*"
 while [ $# -gt 0 ]; do
   case "$1" in
@@ -38,6 +42,7 @@ while [ $# -gt 0 ]; do
     -maxNk) maxNk=$2; shift 2 ;;
     -out) out=$2; shift 2 ;;
     -docs) docs=1; shift ;;
+    -docs-name) docs_name=$2; shift 2 ;;
     -skip-build) build=0; shift ;;
     -rerun) rerun=1; shift ;;
     *) echo "compare-bars: unknown option $1"; exit 1 ;;
@@ -205,8 +210,8 @@ unset multiplot
 GP
 echo "compare-bars: wrote $out/runs.csv, tables.md, convergence.png, histories.png (this invocation ${wall} s, runs ${runsum} s in all)"
 if [ $docs = 1 ]; then
-  cp tables.md "$repo/docs/compare-bars.md"
-  cp convergence.png "$repo/docs/compare-bars-convergence.png"
-  cp histories.png "$repo/docs/compare-bars-histories.png"
+  cp tables.md "$repo/docs/$docs_name.md"
+  cp convergence.png "$repo/docs/$docs_name-convergence.png"
+  cp histories.png "$repo/docs/$docs_name-histories.png"
   echo "compare-bars: copied the tables and figures to $repo/docs"
 fi
