@@ -26,23 +26,30 @@ std::size_t factor_bytes(const std::shared_ptr<const Factor>& f) {
 }
 
 /// Default byte budget of one cache: 64 MiB, two dense factors of 2000
-/// contact nodes (32 MB each), or thousands of small ones. A stepper has up
-/// to three such caches (Schur complements, LCP blocks, open blocks).
+/// contact nodes (32 MB each). A stepper has up to three such caches (Schur
+/// complements, LCP blocks, open blocks).
 constexpr std::size_t kActiveSetCacheBytes = std::size_t(64) << 20;
+/// Default bound on the entries of one cache: with few contact nodes the
+/// budget would hold thousands of small factors, and a long run meeting ever
+/// new sets would grow its memory for that long (tests/scripts/long-run.edp
+/// requires it flat); a bouncing body recurs through far fewer sets.
+constexpr std::size_t kActiveSetCacheEntries = 64;
 
 /// Remembers per-active-set dense factorizations. Active sets recur (a
 /// bouncing body alternates between a handful of them), so recomputing is
-/// avoided. The memory is bounded in bytes, not in entries (a factor of n_c
-/// contact nodes holds 8 n_c^2 bytes): once the factors and their keys
-/// exceed the budget, the least recently used are dropped. The newest entry
-/// is always kept, even alone above the budget (its caller is using it), so
-/// a reference returned by get() is valid until the next get().
+/// avoided. The memory is bounded in bytes (a factor of n_c contact nodes
+/// holds 8 n_c^2 bytes) and in entries: once the factors and their keys
+/// exceed the budget, or the entries the bound, the least recently used are
+/// dropped. The newest entry is always kept, even alone above the budget (its
+/// caller is using it), so a reference returned by get() is valid until the
+/// next get().
 /// A lookup of a known set allocates nothing.
 template <class Factor>
 class ActiveSetCache {
  public:
-  explicit ActiveSetCache(std::size_t budget_bytes = kActiveSetCacheBytes)
-      : budget_(budget_bytes) {}
+  explicit ActiveSetCache(std::size_t budget_bytes = kActiveSetCacheBytes,
+                          std::size_t max_entries = kActiveSetCacheEntries)
+      : budget_(budget_bytes), max_entries_(max_entries) {}
 
   /// The factor of a known set (now the most recently used), or null.
   const Factor* find(const ActiveSet& set) {
@@ -53,11 +60,12 @@ class ActiveSetCache {
   }
 
   /// Stores the factor of a new set, dropping the least recently used ones
-  /// while the budget would be exceeded.
+  /// while the budget or the bound on entries would be exceeded.
   const Factor& insert(const ActiveSet& set, Factor factor) {
     Entry entry{set, std::move(factor), 0};
     entry.bytes = entry_bytes(entry);
-    while (!entries_.empty() && bytes_ + entry.bytes > budget_) {
+    while (!entries_.empty() &&
+           (bytes_ + entry.bytes > budget_ || entries_.size() >= max_entries_)) {
       bytes_ -= entries_.back().bytes;
       map_.erase(entries_.back().set);
       entries_.pop_back();
@@ -105,7 +113,7 @@ class ActiveSetCache {
            sizeof(Entry);
   }
 
-  std::size_t budget_;
+  std::size_t budget_, max_entries_;
   std::size_t bytes_ = 0;
   std::list<Entry> entries_;  // most recently used first
   std::unordered_map<ActiveSet, typename std::list<Entry>::iterator> map_;

@@ -269,6 +269,29 @@ TEST(DenseKernels, ActiveSetCacheStaysWithinItsByteBudget) {
   EXPECT_EQ(made, 42);
 }
 
+TEST(DenseKernels, ActiveSetCacheKeepsAtMostItsBoundOnEntries) {
+  // Small factors far below the byte budget: the bound on entries decides
+  // (memory flat on long runs), least recently used first.
+  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(std::size_t(1) << 30, 5);
+  int made = 0;
+  auto make = [&] {
+    ++made;
+    return factor_of_size(3);
+  };
+  for (int i = 0; i < 20; ++i) {
+    cache.get(set_number(i), make);
+    EXPECT_LE(cache.size(), 5u);
+  }
+  EXPECT_EQ(cache.size(), 5u);
+  cache.get(set_number(15), make);  // the oldest kept, now the newest
+  cache.get(set_number(20), make);  // drops 16
+  EXPECT_EQ(made, 21);
+  cache.get(set_number(15), make);
+  EXPECT_EQ(made, 21);
+  cache.get(set_number(16), make);
+  EXPECT_EQ(made, 22);
+}
+
 TEST(DenseKernels, ActiveSetCacheKeepsAFactorLargerThanItsBudget) {
   // The entry just made is what the caller uses: kept even alone above the
   // budget, and the only one kept.
