@@ -74,7 +74,7 @@ const SchurFactor& ConstrainedSolver::schur(const ActiveSet& active) const {
   }
   // Bordering costs about 2 n_c^2 r flops against n_c^3 / 3 for a fresh
   // factor: break-even at r = n_c / 6, kBorderedFraction leaves a margin for
-  // triangular solves being slower per flop (docs/contact-scale.md).
+  // triangular solves being slower per flop (bench/why.md, "Many contact nodes").
   if (kBorderedFraction * SchurFactor::changes(columns, base_columns) > n_c_)
     return *schur_.insert(active, std::make_shared<const SchurFactor>(W_, std::move(columns)));
   if (base_ == nullptr || base_->columns() != base_columns) {
