@@ -1,8 +1,37 @@
 #include "constrained_solver.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include "errors.hpp"
 
 namespace nbm {
+namespace {
+
+// A set differing from its base (ConstrainedSolver::schur) at
+// r <= n_c / kBorderedFraction nodes gets a factor bordered on the base's,
+// the others a fresh one; bases are made of kBaseBlocks blocks of nodes, so
+// a single contact front leaves at most n_c / (2 kBaseBlocks) changes.
+constexpr Index kBorderedFraction = 8;
+constexpr Index kBaseBlocks = 16;
+
+// x solves X x = r + G^T mu, G x = h with X = P' L L' P, Y = L^-1 P B and S the
+// Cholesky factor of G X^-1 G^T: y = L^-1 P r, mu = S^-1 (h - Y_G^T y),
+// x = P' L^-T (y + Y_G mu), one substitution each way. Column k of Y_G is
+// Y.col(column(k)); mu is a workspace of n_c values.
+template <class Column, class Factor>
+void solve_through_halves(const CholeskyInverse& X, const SparseMatrix& Y, Column column,
+                          const Factor& S, const Vector& r, const Vector& h, Vector& mu,
+                          Vector& x) {
+  x = r;
+  X.forward_in_place(x);  // y
+  for (Index k = 0; k < mu.size(); ++k) mu(k) = h(k) - Y.col(column(k)).dot(x);
+  S.solve_in_place(mu);
+  for (Index k = 0; k < mu.size(); ++k) x += mu(k) * Y.col(column(k));
+  X.backward_in_place(x);
+}
+
+}  // namespace
 
 ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const SpdInverse> X, const SparseMatrix& B)
     : X_(std::move(X)),
@@ -24,16 +53,39 @@ ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X,
       zero_(Vector::Zero(n_c_)),
       mu_(n_c_) {}
 
-const Eigen::LDLT<Matrix>& ConstrainedSolver::schur(const ActiveSet& active) const {
-  return schur_.get(active, [&] {
-    Matrix S(n_c_, n_c_);
-    for (Index a = 0; a < n_c_; ++a)
-      for (Index b = 0; b < n_c_; ++b) S(a, b) = W_(column(active, a), column(active, b));
-    Eigen::LDLT<Matrix> ldlt(S);
-    if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().array() > 0).all())
-      throw NumericalError("the constraint Schur complement of an active set is singular");
-    return ldlt;
-  });
+const SchurFactor& ConstrainedSolver::schur(const ActiveSet& active) const {
+  if (const auto* known = schur_.find(active)) return **known;
+  // The base of a set is a function of the set alone (so that the factor of
+  // a set, and a run, do not depend on the sets met before: the caches stay
+  // pure memoization and a restart is exact): the contact nodes in blocks of
+  // n_c / kBaseBlocks consecutive ones, each block wholly closed if most of
+  // its nodes are, else wholly open. A contact front sweeping the nodes in
+  // their order changes only the blocks it crosses.
+  std::vector<Index> columns(n_c_), base_columns(n_c_);
+  const Index block = std::max<Index>(1, n_c_ / kBaseBlocks);
+  for (Index first = 0; first < n_c_; first += block) {
+    const Index last = std::min(first + block, n_c_);
+    Index closed = 0;
+    for (Index k = first; k < last; ++k) closed += active[k];
+    for (Index k = first; k < last; ++k) {
+      columns[k] = column(active, k);
+      base_columns[k] = 2 * closed > last - first ? n_c_ + k : k;
+    }
+  }
+  // Bordering costs about 2 n_c^2 r flops against n_c^3 / 3 for a fresh
+  // factor: break-even at r = n_c / 6, kBorderedFraction leaves a margin for
+  // triangular solves being slower per flop (bench/why.md, "Many contact nodes").
+  if (kBorderedFraction * SchurFactor::changes(columns, base_columns) > n_c_)
+    return *schur_.insert(active, std::make_shared<const SchurFactor>(W_, std::move(columns)));
+  if (base_ == nullptr || base_->columns() != base_columns) {
+    base_ = std::make_shared<const SchurFactor>(W_, std::move(base_columns));
+    // The bordered factors of the previous base would keep it alive outside
+    // the cache's budget.
+    schur_.remove_if([](const std::shared_ptr<const SchurFactor>& f) { return !f->fresh(); });
+  }
+  if (columns == base_->columns()) return *schur_.insert(active, base_);
+  return *schur_.insert(active,
+                        std::make_shared<const SchurFactor>(W_, std::move(columns), base_));
 }
 
 void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, Vector& x) const {
@@ -47,7 +99,7 @@ void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Ve
   x = r;
   X_->solve_in_place(x);
   for (Index k = 0; k < n_c_; ++k) mu_(k) = h(k) - B_.col(column(active, k)).dot(x);
-  mu_ = S.solve(mu_);
+  S.solve_in_place(mu_);
   correction_.setZero();
   for (Index k = 0; k < n_c_; ++k) correction_ += mu_(k) * B_.col(column(active, k));
   X_->solve_in_place(correction_);
@@ -56,13 +108,24 @@ void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Ve
 
 void ConstrainedSolver::solve_with_factor(const ActiveSet& active, const Vector& r,
                                           const Vector& h, Vector& x) const {
-  const auto& S = schur(active);
-  x = r;
-  cholesky_->forward_in_place(x);  // y
-  for (Index k = 0; k < n_c_; ++k) mu_(k) = h(k) - Y_.col(column(active, k)).dot(x);
-  mu_ = S.solve(mu_);
-  for (Index k = 0; k < n_c_; ++k) x += mu_(k) * Y_.col(column(active, k));
-  cholesky_->backward_in_place(x);
+  solve_through_halves(*cholesky_, Y_, [&](Index k) { return column(active, k); }, schur(active),
+                       r, h, mu_, x);
+}
+
+void solve_constrained_once(const CholeskyInverse& X, const SparseMatrix& B,
+                            const ActiveSet& active, const Vector& r, const Vector& h,
+                            Vector& x) {
+  const Index n_c = B.cols() / 2;
+  std::vector<Triplet> picks;
+  for (Index k = 0; k < n_c; ++k) picks.emplace_back(active[k] ? n_c + k : k, k, 1.0);
+  SparseMatrix select(B.cols(), n_c);
+  select.setFromTriplets(picks.begin(), picks.end());
+  const SparseMatrix Y_G = X.forward(SparseMatrix(B * select));
+  std::vector<Index> all(n_c);
+  for (Index k = 0; k < n_c; ++k) all[k] = k;
+  const SchurFactor S(inner_products(Y_G), std::move(all));
+  Vector mu(n_c);
+  solve_through_halves(X, Y_G, [](Index k) { return k; }, S, r, h, mu, x);
 }
 
 }  // namespace nbm

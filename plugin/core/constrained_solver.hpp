@@ -6,7 +6,8 @@
 // The rows of G are columns of B = [K_{:,C}  E_C]; with W = B^T X^{-1} B
 // computed once, the Schur complement G X^{-1} G^T of an active set is a
 // principal submatrix of W: an active-set change costs a small dense
-// factorization (cached per set), never a new sparse one.
+// factorization (cached per set), or less when the set differs from the last
+// factored one at few nodes (schur_factor.hpp), never a new sparse one.
 //
 // With a Cholesky factor X = P' L L' P, Y = L^{-1} P B (sparse) is kept:
 // G X^{-1} r = Y_G^T y with y = L^{-1} P r, and x = P' L^{-T} (y + Y_G mu),
@@ -18,6 +19,7 @@
 #include <memory>
 
 #include "active_set.hpp"
+#include "schur_factor.hpp"
 #include "spd_inverse.hpp"
 #include "types.hpp"
 
@@ -45,7 +47,10 @@ class ConstrainedSolver {
   // the unit row if it is closed.
   Index column(const ActiveSet& active, Index k) const { return active[k] ? n_c_ + k : k; }
 
-  const Eigen::LDLT<Matrix>& schur(const ActiveSet& active) const;
+  /// The factor of the Schur complement of a set: cached, else bordered on
+  /// the factor of its base (a set that depends on the set alone) if they
+  /// differ at few nodes (schur_factor.hpp), else fresh.
+  const SchurFactor& schur(const ActiveSet& active) const;
   void solve_with_factor(const ActiveSet& active, const Vector& r, const Vector& h,
                          Vector& x) const;
 
@@ -55,9 +60,20 @@ class ConstrainedSolver {
   Index n_c_;
   SparseMatrix Y_;  // L^{-1} P B, with cholesky_
   Matrix W_;
-  mutable ActiveSetCache<Eigen::LDLT<Matrix>> schur_;
+  // Memory: the cache's byte budget plus the base (bordered factors hold
+  // 2 n_c r doubles each, a fresh one n_c^2).
+  mutable ActiveSetCache<std::shared_ptr<const SchurFactor>> schur_;
+  mutable std::shared_ptr<const SchurFactor> base_;
   const Vector zero_;                  // h = 0
   mutable Vector mu_, correction_;
 };
+
+/// x solves X x = r + G^T mu, G x = h for one active set, with an X used for
+/// this one solve (the mass matrix at a start): only the set's n_c columns of
+/// Y and their n_c x n_c Schur complement are formed, not the 2 n_c columns
+/// and the (2 n_c)^2 matrix W that a ConstrainedSolver keeps for every set.
+void solve_constrained_once(const CholeskyInverse& X, const SparseMatrix& B,
+                            const ActiveSet& active, const Vector& r, const Vector& h,
+                            Vector& x);
 
 }  // namespace nbm

@@ -16,12 +16,11 @@ NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
-  const ConstrainedSolver mass(make_cholesky_inverse(problem_.M(), "M"),
-                               problem_.constraint_basis());
+  const auto mass = make_cholesky_inverse(problem_.M(), "M");
   Vector r = load.F - problem_.K() * u_;
   if (damped()) r.noalias() -= C_ * v_;  // v_ on the relation already (start())
   acceleration_constraint(load, active_, h_accel_);
-  mass.solve(active_, r, h_accel_, a_);
+  solve_constrained_once(*mass, problem_.constraint_basis(), active_, r, h_accel_, a_);
 }
 
 void NewmarkStepper::solve_step(const ActiveSet& active, const ContactLoad& next,

@@ -14,6 +14,7 @@
 #include <memory>
 
 #include "central_difference_stepper.hpp"
+#include "constrained_solver.hpp"
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
 #include "newmark_stepper.hpp"
@@ -64,8 +65,8 @@ struct DroppedPlate {
   Plate p;
   nbm_test::Assembled a;
   std::unique_ptr<nbm::ContactProblem> problem;
-  explicit DroppedPlate(bool massless = false) {
-    p.nx = 8;
+  explicit DroppedPlate(bool massless = false, int nx = 8) {
+    p.nx = nx;
     p.ny = 4;
     p.angle = 0.1;
     a = assemble(p);
@@ -108,6 +109,33 @@ TEST(AllocationFree, ImplicitNewmarkStep) {
   const DroppedPlate d;
   nbm::NewmarkStepper stepper(*d.problem, 1e-3);
   EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
+TEST(AllocationFree, BorderedSchurFactorSolve) {
+  // 33 contact nodes, one closed: the set differs from its base (all open)
+  // at one node and gets a Schur factor bordered on the base's
+  // (ConstrainedSolver::schur, schur_factor.hpp). The replays above meet
+  // only sets that are their own base; a solve with a bordered factor, once
+  // made, allocates nothing either.
+  const DroppedPlate d(false, 32);
+  const nbm::Index n = d.problem->size(), n_c = d.problem->n_contact();
+  const nbm::SparseMatrix S = d.problem->M() + 1e-6 * d.problem->K();  // Newmark, dt = 2e-3
+  const nbm::ConstrainedSolver solver(nbm::make_cholesky_inverse(S, "S"),
+                                      d.problem->constraint_basis());
+  nbm::ActiveSet front(n_c, false);
+  front[0] = true;
+  const Vec r = Vec::Ones(n), h = Vec::Zero(n_c);
+  Vec x;
+  allocations = 0;
+  counting = true;
+  solver.solve(front, r, h, x);  // makes the base and the bordered factor
+  counting = false;
+  EXPECT_GT(allocations, 0) << "the first solve factors";
+  allocations = 0;
+  counting = true;
+  solver.solve(front, r, h, x);
+  counting = false;
+  EXPECT_EQ(allocations, 0);
 }
 
 TEST(AllocationFree, MasslessNewmarkStep) {

@@ -138,7 +138,12 @@ Simulation grazing_body(const Grazing& g, double gap, Eigen::MatrixXd& positions
 // NBM's slaving of the contact nodes costs them their velocity (-g dt/2 at
 // the closing step): the centre-of-mass velocity changes by at most
 // 2 (m_C/m) g dt (m_C: lumped mass of the contact nodes), the energy by at
-// most m_C (g dt)^2; with delta >= 0 it flies free like the others.
+// most m_C (g dt)^2; with delta > 0 it flies free like the others. At
+// delta = 0 the run against the obstacle reproduces the far run's closest
+// approach only to round-off (the contact positions come back through the
+// gap, g - z, so the two runs differ in the last bits): the explicit scheme
+// then either flies free or closes for one step, as grazed; which one
+// depends on the last bits of the dense factorizations.
 TEST(RobustnessGrazing, NoFailureNoPenetrationNoSpuriousBounce) {
   const double dt = 1e-3, g = 10;
   const int steps = 200;
@@ -174,7 +179,10 @@ TEST(RobustnessGrazing, NoFailureNoPenetrationNoSpuriousBounce) {
         for (int n = 0; n <= steps; ++n)
           dv_com = std::max(dv_com, std::abs(momentum(s, t.v[n], dir) - momentum(s, ref.v[n], dir)) / m);
         const double dE = std::abs(t.energy.back() - ref.energy.back());
-        if (scheme != Scheme::Explicit || delta >= 0) {
+        const bool touched =
+            std::any_of(t.closed.begin(), t.closed.end(), [](int c) { return c > 0; });
+        const bool grazed = delta < 0 || (delta == 0 && touched);
+        if (scheme != Scheme::Explicit || !grazed) {
           EXPECT_LE(du, std::abs(delta) + 1e-13);
           EXPECT_LE(dv_com, 1e-11);
           EXPECT_LE(dE, 1e-13);

@@ -1,0 +1,307 @@
+// The dense kernels of the contact linear algebra (issue 14) against
+// independent dense computations on random problems: the Gram matrix Y^T Y
+// of a sparse Y (blocked rank-k updates), the one-set constrained solve, and
+// the byte bound of the per-active-set caches.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "active_set.hpp"
+#include "constrained_solver.hpp"
+#include "schur_factor.hpp"
+#include "spd_inverse.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+using nbm::Index;
+using nbm_test::Mat;
+using nbm_test::Vec;
+using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+
+// Random sparse n x m matrix shaped like L^-1 P B: column j is nonzero on a
+// random "path" of rows from a random start to the end (so the last rows are
+// reached by nearly every column), thinned at `keep`, with a few empty rows
+// and a few isolated entries.
+Sparse path_like(Index n, Index m, double keep, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(0, 1);
+  std::normal_distribution<double> N(0, 1);
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (Index j = 0; j < m; ++j) {
+    const Index start = static_cast<Index>(U(rng) * n);
+    for (Index i = start; i < n; ++i)
+      if (i % 7 != 3 && U(rng) < keep) t.emplace_back(i, j, N(rng));
+    t.emplace_back(static_cast<Index>(U(rng) * n), j, N(rng));  // duplicates sum
+  }
+  Sparse Y(n, m);
+  Y.setFromTriplets(t.begin(), t.end());
+  return Y;
+}
+
+TEST(DenseKernels, GramOfSparseRowsMatchesDenseProduct) {
+  std::mt19937 rng(14);
+  // Shapes: tall and thin, wide (the top rows are a dense block wider than
+  // half of W: the in-place path), very sparse (compact blocks), one row.
+  const struct {
+    Index n, m;
+    double keep;
+  } shapes[] = {{400, 30, 0.5}, {300, 120, 0.9}, {2000, 80, 0.02}, {1, 9, 1.0}, {5000, 40, 0.3}};
+  for (const auto& s : shapes) {
+    const Sparse Y = path_like(s.n, s.m, s.keep, rng);
+    const Mat W = nbm::inner_products(Y);
+    const Mat Yd = Mat(Y);
+    const Mat W_ref = Yd.transpose() * Yd;
+    ASSERT_EQ(W.rows(), s.m);
+    ASSERT_EQ(W.cols(), s.m);
+    const double scale = std::max(1.0, W_ref.cwiseAbs().maxCoeff());
+    EXPECT_LE((W - W_ref).cwiseAbs().maxCoeff(), 1e-13 * scale) << s.n << "x" << s.m;
+    EXPECT_EQ(W, W.transpose()) << "symmetric to the last bit";
+  }
+  EXPECT_EQ(nbm::inner_products(Sparse(50, 0)).size(), 0);
+}
+
+TEST(DenseKernels, GramSpansSeveralBlocksAtLargeSizes) {
+  // More rows than one dense block holds (2^21 entries): the runs are cut
+  // by size, and their sum must still be Y^T Y.
+  std::mt19937 rng(15);
+  const Sparse Y = path_like(40000, 120, 0.8, rng);
+  const Mat Yd = Mat(Y);
+  const Mat W_ref = Yd.transpose() * Yd;
+  const Mat W = nbm::inner_products(Y);
+  EXPECT_LE((W - W_ref).cwiseAbs().maxCoeff(), 1e-12 * W_ref.cwiseAbs().maxCoeff());
+}
+
+// x of X x = r + G^T mu, G x = h (dense KKT system), the rows of G being
+// the columns of B chosen per node (open: k, closed: n_c + k).
+Vec kkt_solution(const Mat& X, const Mat& Bd, const nbm::ActiveSet& active, const Vec& r,
+                 const Vec& h) {
+  const Index n = X.rows(), nc = Bd.cols() / 2;
+  Mat G(nc, n);
+  for (Index k = 0; k < nc; ++k) G.row(k) = Bd.col(active[k] ? nc + k : k).transpose();
+  Mat kkt = Mat::Zero(n + nc, n + nc);
+  kkt.topLeftCorner(n, n) = X;
+  kkt.topRightCorner(n, nc) = -G.transpose();
+  kkt.bottomLeftCorner(nc, n) = G;
+  Vec rhs(n + nc);
+  rhs << r, h;
+  return kkt.fullPivLu().solve(rhs).head(n);
+}
+
+// A random constraint basis: sparse "stiffness" columns, unit columns.
+Mat random_basis(Index n, Index nc, std::mt19937& rng) {
+  Mat Bd = Mat::Zero(n, 2 * nc);
+  std::uniform_int_distribution<Index> row(0, n - 1);
+  for (Index k = 0; k < nc; ++k) {
+    for (int e = 0; e < 4; ++e) Bd(row(rng), k) = 100 * nbm_test::random_vector(1, rng)(0);
+    Bd(k, k) += 400;
+    Bd(k, nc + k) = 1.0;
+  }
+  return Bd;
+}
+
+TEST(DenseKernels, ConstrainedSolverOnSweepingSetsMatchesDenseKkt) {
+  // Every path of ConstrainedSolver::schur, each solve against the dense KKT
+  // system. A contact front sweeping 32 nodes, with a second node ahead of it
+  // now and then: the bases are blocks of 2 nodes, closed when both are, so
+  // each set is its base (fresh) or differs from it at 1 or 2 <= 32 / 8
+  // nodes (bordered). Then every other node closed (16 changes from the
+  // all-open base: fresh, not a base), all closed (a new base: the bordered
+  // factors are dropped), and the first set again (bordered anew).
+  std::mt19937 rng(18);
+  const Index n = 120, nc = 32;
+  const Mat X = nbm_test::random_spd(static_cast<int>(n), 1e3, rng);
+  const Mat Bd = random_basis(n, nc, rng);
+  const Sparse B = Bd.sparseView();
+  const nbm::ConstrainedSolver solver(nbm::make_cholesky_inverse(X.sparseView(), "X"), B);
+  nbm::ActiveSet active(nc, false);
+  std::vector<nbm::ActiveSet> sets;
+  for (Index k = 0; k < 6; ++k) {
+    active[k] = true;
+    sets.push_back(active);
+    if (k % 2 == 1) {
+      active[k + 10] = true;
+      sets.push_back(active);
+    }
+  }
+  nbm::ActiveSet alternating(nc);
+  for (Index k = 0; k < nc; ++k) alternating[k] = k % 2 == 1;
+  sets.push_back(alternating);
+  sets.push_back(nbm::ActiveSet(nc, true));
+  sets.push_back(sets.front());  // again, from the cache
+  for (const auto& set : sets) {
+    const Vec r = nbm_test::random_vector(static_cast<int>(n), rng);
+    const Vec h = nbm_test::random_vector(static_cast<int>(nc), rng);
+    const Vec x_ref = kkt_solution(X, Bd, set, r, h);
+    Vec x;
+    solver.solve(set, r, h, x);
+    EXPECT_LE((x - x_ref).cwiseAbs().maxCoeff(), 1e-9 * x_ref.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST(DenseKernels, OneSetConstrainedSolveMatchesDenseKkt) {
+  // X x = r + G^T mu, G x = h with the rows of G chosen per node among the
+  // columns of B = [B_open B_closed], against the dense KKT system.
+  std::mt19937 rng(16);
+  const int n = 40, nc = 6;
+  const Mat X = nbm_test::random_spd(n, 1e3, rng);
+  Mat Bd = Mat::Zero(n, 2 * nc);
+  std::uniform_int_distribution<int> row(0, n - 1);
+  for (int k = 0; k < nc; ++k) {
+    for (int e = 0; e < 4; ++e) Bd(row(rng), k) = nbm_test::random_vector(1, rng)(0);
+    Bd(3 * k + 1, nc + k) = 1.0;
+  }
+  const Sparse B = Bd.sparseView();
+  const auto inverse = nbm::make_cholesky_inverse(X.sparseView(), "X");
+  const Vec r = nbm_test::random_vector(n, rng), h = nbm_test::random_vector(nc, rng);
+  for (const nbm::ActiveSet& active :
+       {nbm::ActiveSet(nc, false), nbm::ActiveSet(nc, true),
+        nbm::ActiveSet{true, false, false, true, true, false}}) {
+    Mat G(nc, n);
+    for (int k = 0; k < nc; ++k) G.row(k) = Bd.col(active[k] ? nc + k : k).transpose();
+    Mat kkt = Mat::Zero(n + nc, n + nc);
+    kkt.topLeftCorner(n, n) = X;
+    kkt.topRightCorner(n, nc) = -G.transpose();
+    kkt.bottomLeftCorner(nc, n) = G;
+    Vec rhs(n + nc);
+    rhs << r, h;
+    const Vec x_ref = kkt.fullPivLu().solve(rhs).head(n);
+    Vec x;
+    nbm::solve_constrained_once(*inverse, B, active, r, h, x);
+    EXPECT_LE((x - x_ref).cwiseAbs().maxCoeff(), 1e-10 * x_ref.cwiseAbs().maxCoeff());
+    // and the solver that keeps W for every set agrees
+    const nbm::ConstrainedSolver kept(nbm::make_cholesky_inverse(X.sparseView(), "X"), B);
+    Vec y;
+    kept.solve(active, r, h, y);
+    EXPECT_LE((y - x_ref).cwiseAbs().maxCoeff(), 1e-10 * x_ref.cwiseAbs().maxCoeff());
+  }
+}
+
+// Columns of a 2 n x 2 n W for a set: node k's first column k if open,
+// n + k if closed.
+std::vector<Index> columns_of(const std::vector<bool>& closed) {
+  const Index n = static_cast<Index>(closed.size());
+  std::vector<Index> c(n);
+  for (Index k = 0; k < n; ++k) c[k] = closed[k] ? n + k : k;
+  return c;
+}
+
+TEST(DenseKernels, BorderedSchurFactorSolvesAsADenseSolve) {
+  // A fresh factor of a base set and factors bordered on it for sets that
+  // differ at 1, 3 and 9 of 40 nodes, against dense solves of W[c, c], on a
+  // W with the scale disparity of the constraint basis (stiffness rows and
+  // unit rows: columns scaled by 1e4 and 1).
+  std::mt19937 rng(17);
+  const Index n = 40;
+  Mat W = nbm_test::random_spd(2 * n, 1e4, rng);
+  Vec scale = Vec::Ones(2 * n);
+  scale.head(n).setConstant(1e4);
+  W = scale.asDiagonal() * W * scale.asDiagonal();
+  std::vector<bool> base_set(n);
+  for (Index k = 0; k < n; ++k) base_set[k] = k % 3 == 0;
+  const auto base = std::make_shared<const nbm::SchurFactor>(W, columns_of(base_set));
+  EXPECT_TRUE(base->fresh());
+  for (int changes : {0, 1, 3, 9}) {
+    std::vector<bool> set = base_set;
+    for (int i = 0; i < changes; ++i) set[(7 * i + 2) % n] = !set[(7 * i + 2) % n];
+    const std::vector<Index> c = columns_of(set);
+    EXPECT_EQ(nbm::SchurFactor::changes(c, base->columns()), changes);
+    Mat S(n, n);
+    for (Index a = 0; a < n; ++a)
+      for (Index b = 0; b < n; ++b) S(a, b) = W(c[a], c[b]);
+    const nbm::SchurFactor bordered(W, c, base);
+    EXPECT_FALSE(bordered.fresh());
+    for (int trial = 0; trial < 3; ++trial) {
+      const Vec b = nbm_test::random_vector(n, rng);
+      const Vec x_ref = S.fullPivLu().solve(b);
+      Vec x = b;
+      bordered.solve_in_place(x);
+      // backward error of the solve, relative to |S| |x|
+      const double residual = (S * x - b).cwiseAbs().maxCoeff();
+      EXPECT_LE(residual, 1e-12 * S.cwiseAbs().maxCoeff() * x.cwiseAbs().maxCoeff())
+          << changes << " changes";
+      EXPECT_LE((x - x_ref).norm(), 1e-8 * x_ref.norm()) << changes << " changes";
+    }
+    // Bordered: 2 n r doubles and small ones, not n^2.
+    if (changes > 0) {
+      EXPECT_LT(bordered.bytes(), sizeof(double) * n * n);
+    }
+  }
+}
+
+// A factor of a k x k matrix: 8 k^2 bytes.
+Eigen::LLT<Mat> factor_of_size(Index k) { return Eigen::LLT<Mat>(Mat::Identity(k, k)); }
+
+nbm::ActiveSet set_number(int i) {
+  nbm::ActiveSet s(16);
+  for (int b = 0; b < 16; ++b) s[b] = (i >> b) & 1;
+  return s;
+}
+
+TEST(DenseKernels, ActiveSetCacheStaysWithinItsByteBudget) {
+  // 100 x 100 factors hold 80 kB each: a budget of 1 MB keeps 12 of them
+  // (with their keys), never more bytes than the budget.
+  const std::size_t budget = 1000000;
+  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(budget);
+  int made = 0;
+  auto make = [&] {
+    ++made;
+    return factor_of_size(100);
+  };
+  for (int i = 0; i < 40; ++i) {
+    cache.get(set_number(i), make);
+    EXPECT_LE(cache.bytes(), budget);
+  }
+  EXPECT_EQ(made, 40);
+  // Full up to one entry: each holds its 80 kB factor and less than 1 kB more.
+  EXPECT_GE(cache.size(), budget / (8 * 100 * 100 + 1000));
+  EXPECT_LE(cache.size(), budget / (8 * 100 * 100));
+  EXPECT_GT(cache.bytes() + 8 * 100 * 100 + 1000, budget);
+  ASSERT_EQ(cache.size(), 12u);  // the sequence below keeps sets 28..39
+  // Least recently used evicted: touch the oldest kept set (28), add one:
+  // 29 is dropped, 28 kept.
+  cache.get(set_number(28), make);
+  EXPECT_EQ(made, 40);
+  cache.get(set_number(40), make);
+  EXPECT_EQ(made, 41);
+  cache.get(set_number(28), make);
+  EXPECT_EQ(made, 41);
+  cache.get(set_number(29), make);
+  EXPECT_EQ(made, 42);
+}
+
+TEST(DenseKernels, ActiveSetCacheKeepsAtMostItsBoundOnEntries) {
+  // Small factors far below the byte budget: the bound on entries decides
+  // (memory flat on long runs), least recently used first.
+  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(std::size_t(1) << 30, 5);
+  int made = 0;
+  auto make = [&] {
+    ++made;
+    return factor_of_size(3);
+  };
+  for (int i = 0; i < 20; ++i) {
+    cache.get(set_number(i), make);
+    EXPECT_LE(cache.size(), 5u);
+  }
+  EXPECT_EQ(cache.size(), 5u);
+  cache.get(set_number(15), make);  // the oldest kept, now the newest
+  cache.get(set_number(20), make);  // drops 16
+  EXPECT_EQ(made, 21);
+  cache.get(set_number(15), make);
+  EXPECT_EQ(made, 21);
+  cache.get(set_number(16), make);
+  EXPECT_EQ(made, 22);
+}
+
+TEST(DenseKernels, ActiveSetCacheKeepsAFactorLargerThanItsBudget) {
+  // The entry just made is what the caller uses: kept even alone above the
+  // budget, and the only one kept.
+  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(1000);
+  const auto& f = cache.get(set_number(1), [] { return factor_of_size(50); });
+  EXPECT_EQ(f.matrixLLT().rows(), 50);
+  EXPECT_EQ(cache.size(), 1u);
+  cache.get(set_number(2), [] { return factor_of_size(50); });
+  EXPECT_EQ(cache.size(), 1u);
+  EXPECT_GT(cache.bytes(), cache.budget());
+}
+
+}  // namespace
