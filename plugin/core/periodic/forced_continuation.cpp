@@ -279,6 +279,10 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
                      ", " + number(o.parameter_max) + "]");
   if (o.direction != 1 && o.direction != -1)
     throw InputError(c + "direction must be +1 or -1, got " + std::to_string(o.direction));
+  if (p0 == (o.direction > 0 ? o.parameter_max : o.parameter_min))
+    throw InputError(c + "the start " + parameter_name(o.parameter) + " = " + number(p0) +
+                     " is on the bound the direction " + std::to_string(o.direction) +
+                     " leaves through");
   if (!(o.min_step > 0) || !(o.step >= o.min_step) || !(o.max_step >= o.step) ||
       !std::isfinite(o.max_step))
     throw InputError(c + "steps must satisfy 0 < min_step <= step <= max_step < inf, got " +
@@ -403,8 +407,8 @@ class Continuation {
     std::string last_failure;
     const double pmin = o_.parameter_min, pmax = o_.parameter_max;
     while (static_cast<int>(curve_.points.size()) < o_.max_points) {
-      const Node& k = nodes.back();
-      const ForcedPoint& pk = curve_.points.back();
+      const Node k = nodes.back();
+      const double pk = curve_.points.back().parameter, sk = curve_.points.back().arclength;
       bool on_bound = false;
       try {
         auto [pt, node] = at(k, h, k.y + h * k.tangent);
@@ -416,14 +420,14 @@ class Continuation {
           // Land on the bound: the corrector with the border row p = bound,
           // from the chord's crossing of it.
           const double bound = pt.parameter < pmin ? pmin : pmax;
-          const double theta = (bound - pk.parameter) / (pt.parameter - pk.parameter);
+          const double theta = (bound - pk) / (pt.parameter - pk);
           Vector row = Vector::Zero(pb_.size());
           row(pb_.p_index()) = 1;
           std::tie(pt, node) =
               solve(k.y + theta * (node.y - k.y), row, pb_.scaled_parameter(bound), k.tangent);
           on_bound = true;
         }
-        pt.arclength = pk.arclength + (node.y - k.y).norm();
+        pt.arclength = sk + (node.y - k.y).norm();
         curve_.points.push_back(std::move(pt));
         nodes.push_back(node);
         events(static_cast<Index>(curve_.points.size()) - 2, nodes[nodes.size() - 2], nodes.back());
@@ -435,7 +439,7 @@ class Continuation {
         if (h < o_.min_step) {
           curve_.stop = ForcedStop::step_too_small;
           curve_.stop_reason = "stopped at " + std::string(parameter_name(o_.parameter)) + " = " +
-                               number(pk.parameter) + " (point " +
+                               number(pk) + " (point " +
                                std::to_string(curve_.points.size() - 1) +
                                "): the corrector failed with the step halved below min_step = " +
                                number(o_.min_step) + "; last failure: " + last_failure;
