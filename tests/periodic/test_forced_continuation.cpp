@@ -336,6 +336,8 @@ TEST(ForcedContinuation, BadInputIsANamedError) {
   bad([](O& o) { o.growth = 0.5; });
   bad([](O& o) { o.easy_iterations = -1; });
   bad([](O& o) { o.max_jump = 0.5; });
+  bad([](O& o) { o.max_turn = 0; });
+  bad([](O& o) { o.max_turn = 4; });
   bad([](O& o) { o.max_points = 0; });
   bad([](O& o) { o.length = -1; });
   bad([](O& o) { o.parameter_scale = NAN; });

@@ -295,6 +295,8 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
     throw InputError(c + "easy_iterations must be >= 0, got " + std::to_string(o.easy_iterations));
   if (!(o.max_jump >= 1) || !std::isfinite(o.max_jump))
     throw InputError(c + "max_jump must be finite and >= 1, got " + number(o.max_jump));
+  if (!(o.max_turn > 0) || !(o.max_turn <= M_PI))
+    throw InputError(c + "max_turn must be in (0, pi], got " + number(o.max_turn));
   if (o.max_points < 1)
     throw InputError(c + "max_points must be >= 1, got " + std::to_string(o.max_points));
   if (!(o.length >= 0) || !std::isfinite(o.length))
@@ -426,6 +428,10 @@ class Continuation {
         if (jump > o_.max_jump * h)
           throw NumericalError("the corrected point jumped " + number(jump / h) +
                                " times the step (max_jump " + number(o_.max_jump) + ")");
+        const double turn = std::acos(std::clamp(k.tangent.dot(node.tangent), -1.0, 1.0));
+        if (turn > o_.max_turn)
+          throw NumericalError("the tangent turned by " + number(turn) +
+                               " rad in one step (max_turn " + number(o_.max_turn) + ")");
         if (pt.parameter < pmin || pt.parameter > pmax) {
           // Land on the bound: the corrector with the border row p = bound,
           // from the chord's crossing of it.

@@ -52,6 +52,11 @@ struct ForcedContinuationOptions {
   /// (scaled) is rejected like a failed corrector: it jumped to another
   /// branch. Must be >= 1 (the point lies on the hyperplane at `step`).
   double max_jump = 2;
+  /// Largest angle (radians) between the tangents of consecutive points; a
+  /// sharper turn is rejected like a failed corrector. On a C^1 curve it
+  /// vanishes with the step; a corrector that converged back onto the part
+  /// of the curve already followed turns by about pi.
+  double max_turn = 0.5;
   int max_points = 200;      ///< including the first point
   /// Scales: L of the displacements (0: from the first orbit, the larger of
   /// |u0| and |v0| / omega_0) and P of the parameter (0: |p_0|).
