@@ -104,8 +104,9 @@ struct ForcedEvent {
   Index point = 0;
   double parameter = 0, arclength = 0;
   /// true: bisection on the arclength to event_tolerance; false:
-  /// interpolation in the bracket (linear in the fold's tangent_parameter
-  /// between the two points, else the middle of the bracket). `orbit` is the
+  /// interpolation in the bracket (for a fold between the two points, the
+  /// vertex of the parabola whose slope dp/ds is linear between their
+  /// tangents; else the middle of the bracket, on the chord). `orbit` is the
   /// corrected point nearest past the event (points[point + 1] if none).
   bool bisected = false;
   PeriodicOrbit orbit;
