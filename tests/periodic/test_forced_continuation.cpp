@@ -267,11 +267,33 @@ TEST(ForcedContinuation, PeriodDoublingIsConfirmedByThePeriodTwoOrbit) {
   Bilinear bs = sweep.b;
   bs.w = doublings[0].parameter;
   EXPECT_LT((bs.integrate(xs, 1) - xs).norm(), 1e-7);
+  // The period-2 branch continues from there (m = 2, from that orbit at
+  // that frequency), into the interval where the period-1 orbit is unstable.
+  nbm::ForcedContinuationOptions o2 = sweep.o;
+  o2.shooting.subharmonic = 2;
+  o2.max_points = 4;
+  const auto doubled = nbm::continue_forced(
+      sweep.field, sweep.b.damping(),
+      nbm::forced_load(sweep.b.load(), nbm::ForcedParameter::frequency, branch.parameter),
+      branch.orbit.u0, branch.orbit.v0, o2);
+  EXPECT_EQ(doubled.stop, nbm::ForcedStop::max_points) << doubled.stop_reason;
+  for (const auto& pt : doubled.points) {
+    EXPECT_NEAR(pt.orbit.period, 4 * M_PI / pt.omega, 1e-12);
+    Bilinear bp = sweep.b;
+    bp.w = pt.omega;
+    const Eigen::Vector2d x(pt.orbit.u0(0), pt.orbit.v0(0));
+    EXPECT_LT((bp.integrate(x, 2) - x).norm(), 1e-7) << "w " << pt.omega;
+    EXPECT_GT((bp.integrate(x, 1) - x).norm(), 1e-3) << "w " << pt.omega;
+  }
+  EXPECT_GT(doubled.points.back().omega, doubled.points.front().omega);
   // Not a period doubling: a named error.
   const auto folds = sweep.events(nbm::ForcedEventKind::fold);
   ASSERT_FALSE(folds.empty());
   EXPECT_THROW(nbm::switch_at_period_doubling(sweep.field, sweep.b.damping(), sweep.b.load(),
                                               sweep.o, sweep.curve, folds[0]),
+               nbm::InputError);
+  EXPECT_THROW(nbm::switch_at_period_doubling(sweep.field, sweep.b.damping(), sweep.b.load(),
+                                              sweep.o, sweep.curve, doublings[0], 0),
                nbm::InputError);
 }
 
