@@ -145,9 +145,10 @@ TEST(Backbone, IsHomogeneousInTheGap) {
 }
 
 // The bilinear oscillator: mass m on a spring k (interior dof), joined by a
-// spring k_c to a massless contact dof that stops at the gap g
-// (ImpactOscillator with m_B = 0), under a constant load P on the mass.
-// Open, the mass oscillates about u_s = P / k with w1 = sqrt(k / m); in
+// spring k_c to a contact dof that stops at the gap g, under a constant load
+// P on the mass. The contact dof is massless (m_B = 0) or carries m_B (the
+// paper's NBM: it moves with the mass while open, stops dead on contact).
+// Open, the mass oscillates about u_s = P / k with w1 = sqrt(k / (m + m_B)); in
 // contact (u > g) it feels k + k_c: w2 = sqrt((k + k_c) / m) about
 // z = (P + k_c g) / (k + k_c). From rest at u_s - A (t = 0, the free turning
 // point), u = u_s - A cos(w1 t) reaches g at w1 t1 = pi - acos(g' / A),
@@ -156,10 +157,12 @@ TEST(Backbone, IsHomogeneousInTheGap) {
 // s2 = (2 / w2) atan(V / (w2 (g - z))), and the free half mirrors the first:
 //   T(A) = 2 (pi - acos(g' / A)) / w1 + (2 / w2) atan(V / (w2 (g - z))).
 // As g' / A -> 0 (a gap at 0): T -> pi / w1 + pi / w2, the frequency
-// 2 w1 w2 / (w1 + w2) whatever the amplitude.
+// 2 w1 w2 / (w1 + w2) whatever the amplitude. With m_B > 0 the two terms in
+// sqrt(A - g') no longer cancel: T(A) - T(g') ~ sqrt(A - g'), the backbone
+// leaves grazing with a vertical tangent (m_B = 0: ~ (A - g')^(3/2)).
 struct Bilinear {
-  double m = 1, k = 1, kc, g = 0.1, P = 0;
-  double w1() const { return std::sqrt(k / m); }
+  double m = 1, mB = 0, k = 1, kc, g = 0.1, P = 0;
+  double w1() const { return std::sqrt(k / (m + mB)); }
   double w2() const { return std::sqrt((k + kc) / m); }
   double period(double A) const {
     const double us = P / k, gp = g - us, z = (P + kc * g) / (k + kc);
@@ -171,21 +174,23 @@ struct Bilinear {
 struct BilinearCase {
   double kc, P;
   bool half;
+  double mB = 0;
 };
 std::string case_name(const BilinearCase& c) {
   using nbm_test::name_word;
-  return "kc" + name_word(c.kc) + "_P" + name_word(c.P) + (c.half ? "_half" : "_full");
+  return "kc" + name_word(c.kc) + "_P" + name_word(c.P) + "_mB" + name_word(c.mB) +
+         (c.half ? "_half" : "_full");
 }
 void PrintTo(const BilinearCase& c, std::ostream* os) { *os << case_name(c); }
 
 class BilinearBackbone : public ::testing::TestWithParam<BilinearCase> {};
 
 TEST_P(BilinearBackbone, FollowsTheClosedFormPeriod) {
-  const auto [kc, P, half] = GetParam();
+  const auto [kc, P, half, mB] = GetParam();
   Bilinear exact;
-  exact.kc = kc, exact.P = P;
+  exact.kc = kc, exact.P = P, exact.mB = mB;
   Eigen::Matrix2d M, K;
-  M << exact.m, 0, 0, 0;
+  M << exact.m, 0, 0, mB;
   K << exact.k + kc, -kc, -kc, kc;
   const nbm::ReducedField field(M, K, Eigen::Vector2d(P, 0), {1},
                                 Vector::Constant(1, exact.g));
@@ -224,7 +229,8 @@ TEST_P(BilinearBackbone, FollowsTheClosedFormPeriod) {
 INSTANTIATE_TEST_SUITE_P(ClosedForm, BilinearBackbone,
                          ::testing::Values(BilinearCase{1, 0, true}, BilinearCase{10, 0, false},
                                            BilinearCase{100, 0.05, true},
-                                           BilinearCase{3, -0.2, false}),
+                                           BilinearCase{3, -0.2, false},
+                                           BilinearCase{10, 0, true, 0.5}),
                          [](const ::testing::TestParamInfo<BilinearCase>& info) {
                            return case_name(info.param);
                          });
