@@ -144,6 +144,47 @@ TEST(Backbone, IsHomogeneousInTheGap) {
   }
 }
 
+// The chain's first backbone turns: events flagged where the data of the
+// orbits say (frequency or energy turning, switches or stability changing),
+// and it ends, through a 6:1 internal resonance, on an orbit without contact:
+// mode 2's linear orbit, whose period is 6 times mode 2's.
+TEST(Backbone, FlagsEventsWhereTheOrbitsChangeAndStopsOffContact) {
+  const Chain chain;
+  const OpenSystem lin(chain);
+  nbm::BackboneOptions o;
+  o.points = 60;
+  o.step = 0.1;
+  const nbm::Backbone b = nbm::backbone(chain.field(), 0, o);
+  ASSERT_GE(b.points.size(), 3u);
+  int folds = 0, changes = 0;
+  for (std::size_t k = 0; k < b.points.size(); ++k) {
+    const auto& p = b.points[k].orbit;
+    std::string expected = k == 0 ? "grazing" : "";
+    auto add = [&](const char* e) { expected += (expected.empty() ? "" : " ") + std::string(e); };
+    if (k > 0) {
+      const auto& q = b.points[k - 1].orbit;
+      if (p.switches.size() != q.switches.size()) add("grazing");
+      if (k + 1 < b.points.size()) {
+        const auto& r = b.points[k + 1];
+        // period up then down (or down then up) = frequency turning
+        if ((p.period - q.period) * (r.orbit.period - p.period) < 0) add("fold-frequency"), ++folds;
+        const double e0 = b.points[k - 1].energy, e1 = b.points[k].energy, e2 = r.energy;
+        if ((e1 - e0) * (e2 - e1) < 0) add("fold-energy"), ++folds;
+      }
+      if (p.stable != q.stable) add("stability"), ++changes;
+    }
+    EXPECT_EQ(b.points[k].events, expected) << "orbit " << k;
+  }
+  EXPECT_GE(folds, 2);
+  EXPECT_GE(changes, 2);
+  const auto& last = b.points.back().orbit;
+  EXPECT_NE(b.stop_reason.find("an orbit without contact"), std::string::npos) << b.stop_reason;
+  EXPECT_EQ(last.switches.size(), 0u);
+  EXPECT_EQ(last.contact_time, 0.0);
+  const double T2 = 2 * M_PI / lin.omega(2);
+  EXPECT_NEAR(last.period, 6 * T2, 1e-8 * last.period);
+}
+
 // The bilinear oscillator: mass m on a spring k (interior dof), joined by a
 // spring k_c to a contact dof that stops at the gap g, under a constant load
 // P on the mass. The contact dof is massless (m_B = 0) or carries m_B (the

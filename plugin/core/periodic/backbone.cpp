@@ -168,8 +168,12 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
     }
     previous = last.orbit;
     b.points.push_back(point_of(field, g, std::move(next)));
-    if (b.points.back().orbit.switches.empty()) {
-      b.stop_reason = "the family reached an orbit without contact (back on the linear mode)";
+    // No switch and no contact: an orbit of the open (linear) system again.
+    // (No switch with a contact closed throughout is an orbit of a closed
+    // region: the family goes on.)
+    const PeriodicOrbit& added = b.points.back().orbit;
+    if (added.switches.empty() && added.contact_time == 0) {
+      b.stop_reason = "the family reached an orbit without contact (back on the linear system)";
       break;
     }
   }

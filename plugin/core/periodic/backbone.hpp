@@ -59,8 +59,8 @@ struct Backbone {
 /// exact orbit of the affine linear family): beyond grazing the orbits
 /// leave the linear family, which penetrates the obstacle. Ends after
 /// options.points orbits, past options.max_energy, when the corrector fails
-/// at step/64 or when an orbit has no contact (the family went back to the
-/// linear one); stop_reason says which. Throws as grazing_orbit, and
+/// at step/64 or at an orbit without contact (no switch, no closed contact:
+/// the family went back to the linear system); stop_reason says which. Throws as grazing_orbit, and
 /// InputError on bad options.
 Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& options);
 
