@@ -42,7 +42,8 @@ Vector static_state(const Region& open) {
 // Vibration energy and amplitude of an orbit about the static state.
 BackbonePoint point_of(const ReducedField& field, const GrazingOrbit& g, PeriodicOrbit orbit) {
   BackbonePoint p;
-  p.energy = orbit.energy_start(3) - field.energies(g.static_state, 0 * g.static_state)(3);
+  const Vector rest = Vector::Zero(g.static_state.size());
+  p.energy = orbit.energy_start(3) - field.energies(g.static_state, rest)(3);
   p.amplitude = (orbit.u0 - g.static_state).cwiseAbs().maxCoeff();
   p.orbit = std::move(orbit);
   return p;
