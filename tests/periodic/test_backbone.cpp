@@ -89,7 +89,8 @@ TEST(Backbone, StartsAtTheLinearModeAtGrazing) {
       EXPECT_NEAR(b.grazing.amplitude, a, 1e-10 * a);
       EXPECT_NEAR(p.energy, 0.5 * a * a * lin.omega(j) * lin.omega(j), 1e-9 * p.energy);
       EXPECT_NEAR(p.amplitude, a * phi.cwiseAbs().maxCoeff(), 1e-10 * p.amplitude);
-      EXPECT_LE((b.grazing.static_state - lin.static_u).norm(), 1e-12 + 1e-10 * lin.static_u.norm());
+      EXPECT_LE((b.grazing.static_state - lin.static_u).norm(),
+                1e-12 + 1e-10 * lin.static_u.norm());
       // u0 = u_s -+ a phi, at rest; no contact, but a gap of exactly 0 at T/2.
       const Vector d = p.orbit.u0 - lin.static_u;
       EXPECT_LE(std::min((d - a * phi).norm(), (d + a * phi).norm()), 1e-10 * a);
@@ -124,7 +125,8 @@ TEST(Backbone, IsHomogeneousInTheGap) {
   o.step = 0.1;
   for (nbm::Index j : {0, 1}) {
     SCOPED_TRACE("mode " + std::to_string(j));
-    const nbm::Backbone b1 = nbm::backbone(one.field(), j, o), b2 = nbm::backbone(two.field(), j, o);
+    const nbm::Backbone b1 = nbm::backbone(one.field(), j, o);
+    const nbm::Backbone b2 = nbm::backbone(two.field(), j, o);
     ASSERT_EQ(b1.points.size(), 12u) << b1.stop_reason;
     ASSERT_EQ(b2.points.size(), 12u) << b2.stop_reason;
     for (std::size_t k = 0; k < b1.points.size(); ++k) {
@@ -307,7 +309,8 @@ TEST(Backbone, RejectsBadInput) {
   Chain none = chain;
   none.contact.clear();
   none.gaps.resize(0);
-  expect_input_error([&] { nbm::backbone(none.field(), 0, o); }, "contacts: the model has no contact");
+  expect_input_error([&] { nbm::backbone(none.field(), 0, o); },
+                     "contacts: the model has no contact");
   Chain pushed = chain;
   pushed.F(5) = 1;  // pushes the contact dofs beyond their gaps at rest
   expect_input_error([&] { nbm::backbone(pushed.field(), 0, o); },

@@ -59,7 +59,8 @@ void add_event(std::string& events, const char* name) {
 // number of switches (a contact touched or left in between) or of stability.
 void mark_events(std::vector<BackbonePoint>& points) {
   auto turns = [&](std::size_t k, auto value) {
-    return (value(points[k]) - value(points[k - 1])) * (value(points[k + 1]) - value(points[k])) < 0;
+    const double before = value(points[k]) - value(points[k - 1]);
+    return before * (value(points[k + 1]) - value(points[k])) < 0;
   };
   auto frequency = [](const BackbonePoint& p) { return 1 / p.orbit.period; };
   auto energy = [](const BackbonePoint& p) { return p.energy; };
@@ -128,7 +129,8 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
   if (o.points < 1) throw InputError("points: expected >= 1, got " + std::to_string(o.points));
   if (!(o.step > 0) || !std::isfinite(o.step))
     throw InputError("step: expected a finite step > 0, got " + str(o.step));
-  if (!(o.max_energy > 0)) throw InputError("energy: expected a limit > 0, got " + str(o.max_energy));
+  if (!(o.max_energy > 0))
+    throw InputError("energy: expected a limit > 0, got " + str(o.max_energy));
   if (o.max_iterations < 1) throw InputError("iterations: expected >= 1");
   Backbone b;
   b.grazing = grazing_orbit(field, mode);
