@@ -6,6 +6,8 @@
 #   docs/cantilever-periodic-family.png   period against energy along the orbit's family
 #   docs/cantilever-periodic.md           summary of both mass treatments and the
 #                                         harmonic-balance / shooting agreement against H
+#   docs/plate-backbone.png               backbone of the first mode from grazing
+#                                         (edp/plate-backbone.edp, defaults)
 # Needs a build (scripts/build.sh); intermediate files go to out/figures.
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -39,3 +41,5 @@ for H in 40 160; do
   row "consistent (tau 0.3)" $H "$out"
 done
 cat "$md"
+bash "$repo/scripts/freefem.sh" "$repo/edp/plate-backbone.edp" | tail -n 1
+cp plate-backbone.png "$repo/docs/plate-backbone.png"

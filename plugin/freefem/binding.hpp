@@ -90,5 +90,7 @@ void assign(KN<K>* x, const std::vector<T>& v) {
 
 /// Registers the periodic-orbit functions (orbit_functions.cpp).
 void load_orbit_functions();
+/// Registers nbmBackbone (backbone_functions.cpp).
+void load_backbone_functions();
 
 }  // namespace nbm_binding

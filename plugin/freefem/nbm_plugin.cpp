@@ -282,6 +282,7 @@ void Load_Init() {
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
   Global.Add("nbmContactNodes", "(", new OneOperator1_<long, H>(nbm_n_contact));
   load_orbit_functions();
+  load_backbone_functions();
 }
 
 }  // namespace

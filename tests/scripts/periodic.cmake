@@ -64,3 +64,35 @@ nbm_bad_orbit_case(continue-step [[nbmContinueOrbit: step: expected a finite ste
 nbm_bad_orbit_case(continue-harmonic-balance [[nbmContinueOrbit: continuation follows orbits computed by shooting]])
 nbm_bad_orbit_case(continue-load [[nbmContinueOrbit: the two orbits were computed on different problems, loads]])
 nbm_bad_orbit_case(unconstructed [[nbmPeriodicOrbit: the NBM object was not constructed]])
+
+# Backbones from grazing (edp/plate-backbone.edp, method.md §6): with the
+# consistent mass the script computes the linear frequency of the plate's
+# first mode itself (dense eigenproblem of the open system, LAPACK), and the
+# backbone's first orbit (the grazing one, no contact) has it to 1e-8; with
+# the massless boundary, 12 orbits periodic to 1e-10, the frequency 2% above
+# the linear one at the last, which is in contact for 5% of its period.
+set(PLATE_BACKBONE ${PROJECT_SOURCE_DIR}/edp/plate-backbone.edp)
+nbm_summary_test(plate-backbone-linear
+  "linearError<=1e-8 firstContactTime<=0 firstSwitches<=0 maxPeriodicity<=1e-10"
+  ${PLATE_BACKBONE} -out plate-backbone-linear -mass consistent -points 1)
+nbm_summary_test(plate-backbone
+  "points>=12 maxPeriodicity<=1e-10 firstContactTime<=0 firstSwitches<=0 lastRatio>=1.02 lastSwitches>=4"
+  ${PLATE_BACKBONE} -out plate-backbone -points 12)
+
+# Bad input of nbmBackbone (tests/scripts/periodic/backbone-cases.edp).
+set(NBM_BACKBONE_CASES ${CMAKE_CURRENT_SOURCE_DIR}/periodic/backbone-cases.edp)
+nbm_bad_valid(backbone-valid ${NBM_BACKBONE_CASES} -case valid)
+function(nbm_bad_backbone_case name regex)
+  nbm_bad_input_test(backbone-${name} ${regex} ${NBM_BACKBONE_CASES} -case ${name})
+endfunction()
+nbm_bad_backbone_case(unconstructed [[nbmBackbone: the NBM object was not constructed]])
+nbm_bad_backbone_case(mode [[nbmBackbone: mode: 1000 out of range \[0, [0-9]+\)]])
+nbm_bad_backbone_case(mode-negative [[nbmBackbone: mode: -1 out of range]])
+nbm_bad_backbone_case(points [[nbmBackbone: points: expected >= 1, got 0]])
+nbm_bad_backbone_case(step [[nbmBackbone: step: expected a finite step > 0]])
+nbm_bad_backbone_case(energy [[nbmBackbone: energy: expected a limit > 0]])
+nbm_bad_backbone_case(iterations [[nbmBackbone: iterations: expected >= 1]])
+nbm_bad_backbone_case(F-size [[nbmBackbone: F: size 5, expected [0-9]+]])
+nbm_bad_backbone_case(gap [[nbmBackbone: gaps: contact 0 has gap 0. a backbone from grazing needs every gap > 0]])
+nbm_bad_backbone_case(load [[nbmBackbone: F: the static state under the load closes contact]])
+nbm_bad_backbone_case(file [[nbmBackbone: cannot write /nonexistent-folder/backbone.csv]])

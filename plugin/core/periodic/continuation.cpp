@@ -34,4 +34,20 @@ PeriodicOrbit continuation_step(const ReducedField& field, const PeriodicOrbit& 
   return shoot(field, predictor.head(n), predictor.segment(n, n), predictor(2 * n), shooting);
 }
 
+PeriodicOrbit shortening_continuation_step(const ReducedField& field, const PeriodicOrbit& previous,
+                                           const PeriodicOrbit& last,
+                                           const ShootingOptions& shooting,
+                                           const ContinuationOptions& options, double& used) {
+  ContinuationOptions c = options;
+  for (;; c.step /= 4) {
+    try {
+      PeriodicOrbit next = continuation_step(field, previous, last, shooting, c);
+      used = c.step;
+      return next;
+    } catch (const NumericalError&) {
+      if (c.step < options.step / 60) throw;
+    }
+  }
+}
+
 }  // namespace nbm

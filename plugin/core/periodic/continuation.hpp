@@ -24,4 +24,14 @@ PeriodicOrbit continuation_step(const ReducedField& field, const PeriodicOrbit& 
                                 const PeriodicOrbit& last, ShootingOptions shooting,
                                 const ContinuationOptions& options);
 
+/// continuation_step with options.step, and where the corrector fails with
+/// step/4, step/16 and step/64: the period map is only piecewise smooth, and
+/// near a switch appearing or a branch point shorter steps follow. Returns
+/// the orbit; `used` is the step that converged. Throws the NumericalError
+/// of the last attempt if none converges.
+PeriodicOrbit shortening_continuation_step(const ReducedField& field, const PeriodicOrbit& previous,
+                                           const PeriodicOrbit& last,
+                                           const ShootingOptions& shooting,
+                                           const ContinuationOptions& options, double& used);
+
 }  // namespace nbm

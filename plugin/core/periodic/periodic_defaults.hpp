@@ -16,4 +16,8 @@ inline constexpr double periodic_tiny = 1e-300;
 /// (quadratic convergence), the cap only bounds a failing run.
 inline constexpr int periodic_max_iterations = 50;
 
+/// Interior dofs the dense periodic solvers accept without a reduced basis
+/// (user orbits, backbones): beyond, their dense matrices cost too much.
+inline constexpr long periodic_max_dense_dofs = 3000;
+
 }  // namespace nbm

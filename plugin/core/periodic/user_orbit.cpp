@@ -14,9 +14,6 @@
 namespace nbm {
 namespace {
 
-// Dense reduced matrices: beyond this size a reduced basis would be needed.
-constexpr Index kMaxInteriorDofs = 3000;
-
 Vector user_vector(const std::vector<double>& x, Index n, const char* name) {
   if (static_cast<Index>(x.size()) != n)
     throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
@@ -124,10 +121,10 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   const auto kind = condition_of(o.condition);
   const Index interior = problem.size() - problem.n_contact();
   if (o.modes < 0) throw InputError("modes: expected >= 0");
-  if (o.modes == 0 && interior > kMaxInteriorDofs)
+  if (o.modes == 0 && interior > periodic_max_dense_dofs)
     throw InputError("the model has " + std::to_string(interior) +
                      " interior dofs; without a reduced basis the periodic-orbit solvers accept "
-                     "at most " + std::to_string(kMaxInteriorDofs) +
+                     "at most " + std::to_string(periodic_max_dense_dofs) +
                      " (use modes = m for a reduced basis, or a coarser mesh)");
   if (o.modes > 0 && o.probe >= 0)
     throw InputError("probe: not available with modes > 0 (the phase and displacement "
@@ -265,17 +262,9 @@ OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last,
   c.length = std::max(after.u0.cwiseAbs().maxCoeff(), 1e-300);
   c.time = after.period;
   c.velocity = c.length * 2 * M_PI / c.time;
-  // The period map is only piecewise smooth: where the corrector fails
-  // (near a switch appearing or a branch point), shorter steps follow.
-  PeriodicOrbit next;
-  for (c.step = step;; c.step /= 4) {
-    try {
-      next = continuation_step(m.field(), before, after, m.conditions, c);
-      break;
-    } catch (const NumericalError&) {
-      if (c.step < step / 60) throw;
-    }
-  }
+  c.step = step;
+  const PeriodicOrbit next =
+      shortening_continuation_step(m.field(), before, after, m.conditions, c, c.step);
   std::ostringstream method;
   method << "method pseudo-arclength continuation, step " << c.step << " (shooting, "
          << (m.conditions.half_period ? "half period" : "full period") << ", exact flow)\n";

@@ -1,0 +1,70 @@
+#include "user_backbone.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "backbone.hpp"
+#include "contact_problem.hpp"
+#include "errors.hpp"
+
+namespace nbm {
+
+BackboneReport backbone(const ContactProblem& problem, const std::vector<double>& F, long mode,
+                        const BackboneOptions& options) {
+  const Index N = problem.n_dofs();
+  if (static_cast<Index>(F.size()) != N)
+    throw InputError("F: size " + std::to_string(F.size()) + ", expected " + std::to_string(N) +
+                     " (the number of dofs)");
+  const Vector FF = Eigen::Map<const Vector>(F.data(), N);
+  if (!FF.allFinite()) throw InputError("F: non-finite entries");
+  const Index interior = problem.size() - problem.n_contact();
+  if (interior > periodic_max_dense_dofs)
+    throw InputError("the model has " + std::to_string(interior) +
+                     " interior dofs; backbones use dense matrices and accept at most " +
+                     std::to_string(periodic_max_dense_dofs) + " (use a coarser mesh)");
+  const ReducedField field = ReducedField::from(problem, problem.to_internal(FF));
+  const Backbone b = backbone(field, mode, options);
+
+  BackboneReport r;
+  r.linear_omega = b.grazing.omega;
+  r.grazing_amplitude = b.grazing.amplitude;
+  r.grazing_contact = b.grazing.contact;
+  r.stop_reason = b.stop_reason;
+  for (const BackbonePoint& p : b.points) {
+    BackbonePointReport q;
+    q.period = p.orbit.period;
+    q.omega = 2 * M_PI / q.period;
+    q.energy = p.energy;
+    q.amplitude = p.amplitude;
+    q.contact_time = p.orbit.contact_time;
+    q.switches = static_cast<long>(p.orbit.switches.size());
+    for (const auto& mu : p.orbit.multipliers) {
+      q.multipliers_re.push_back(mu.real());
+      q.multipliers_im.push_back(mu.imag());
+      q.max_multiplier = std::max(q.max_multiplier, std::abs(mu));
+    }
+    q.stable = p.orbit.stable;
+    q.periodicity_residual = p.orbit.periodicity_residual;
+    q.events = p.events;
+    r.points.push_back(std::move(q));
+  }
+  std::ostringstream s;
+  s.precision(12);
+  const BackbonePointReport &first = r.points.front(), &last = r.points.back();
+  s << "backbone of mode " << mode << " from grazing (" << (options.half_period ? "half" : "full")
+    << "-period shooting, exact flow, pseudo-arclength step " << options.step << ")\n"
+    << "linear: omega " << r.linear_omega << ", period " << first.period << "\n"
+    << "grazing: contact " << r.grazing_contact << " (position in the contact list), modal "
+    << "amplitude " << r.grazing_amplitude << ", amplitude " << first.amplitude << ", energy "
+    << first.energy << "\n"
+    << r.points.size() << " orbits; last: omega " << last.omega << " (" << last.omega / first.omega
+    << " x linear), energy " << last.energy << ", amplitude " << last.amplitude
+    << ", contact time " << last.contact_time << " (" << last.contact_time / last.period
+    << " of the period), " << last.switches << " switches\n"
+    << "stopped: " << r.stop_reason << "\n";
+  r.summary = s.str();
+  return r;
+}
+
+}  // namespace nbm

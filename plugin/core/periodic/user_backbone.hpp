@@ -1,0 +1,74 @@
+// Backbones of nonsmooth modes from grazing on the user's model: the front
+// end of backbone.hpp for the FreeFEM binding. Like user_orbit.hpp, free of
+// Eigen and FreeFEM types (backbone.hpp shares its options).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "periodic_defaults.hpp"
+
+namespace nbm {
+
+class ContactProblem;
+
+struct BackboneOptions {
+  /// Orbits on the backbone, the grazing orbit included.
+  long points = 20;
+  /// Pseudo-arclength step in unknowns scaled by the last orbit's vibration
+  /// amplitude, velocity scale and period (continuation.hpp); a failed
+  /// corrector retries with step/4, step/16, step/64.
+  double step = 0.05;
+  /// Half-period shooting (orbits at rest at 0 and T/2, like the linear
+  /// mode's); false: full-period shooting.
+  bool half_period = true;
+  /// Stop after the first orbit whose vibration energy exceeds this.
+  double max_energy = std::numeric_limits<double>::infinity();
+  int max_iterations = periodic_max_iterations;
+};
+
+/// One orbit of a backbone and its monitors.
+struct BackbonePointReport {
+  double omega = 0;   ///< circular frequency 2 pi / period
+  double period = 0;
+  /// Total energy minus that of the static state (which the load alone
+  /// gives): 0 at rest, a^2 omega^2 / 2 on the linear mode.
+  double energy = 0;
+  /// max over the interior dofs of |u(0) - u_static| (t = 0: the turning
+  /// point away from the obstacle, where the orbit is at rest).
+  double amplitude = 0;
+  double contact_time = 0;
+  long switches = 0;  ///< contact switches per period
+  std::vector<double> multipliers_re, multipliers_im;  ///< by decreasing modulus
+  double max_multiplier = 0;                           ///< the largest modulus
+  bool stable = false;
+  double periodicity_residual = 0;
+  /// Space-separated: "grazing" (the start, or the number of switches
+  /// changed since the previous orbit: a contact touched or left), "fold-
+  /// frequency" / "fold-energy" (the frequency / the energy turns here
+  /// along the backbone), "stability" (changed since the previous orbit).
+  std::string events;
+};
+
+struct BackboneReport {
+  double linear_omega = 0;      ///< omega_j of the open (linear) system
+  double grazing_amplitude = 0; ///< modal amplitude a of the grazing orbit
+  long grazing_contact = -1;    ///< the contact node (position in the contact list) that grazes
+  std::vector<BackbonePointReport> points;
+  std::string stop_reason;
+  std::string summary;
+};
+
+/// The backbone of mode `mode` (0: the lowest; modes of the system with
+/// every contact open, the contact dofs slaved as for an open contact) of
+/// `problem` under the constant load F (user vector), from its grazing orbit
+/// (backbone.hpp, method.md §6). Throws InputError naming the argument
+/// (mode out of range or rigid, no contact, a gap <= 0, a load that closes
+/// a contact at rest, bad options), NumericalError if the grazing orbit
+/// cannot be analysed; a corrector failure along the backbone ends it
+/// (stop_reason).
+BackboneReport backbone(const ContactProblem& problem, const std::vector<double>& F, long mode,
+                        const BackboneOptions& options);
+
+}  // namespace nbm

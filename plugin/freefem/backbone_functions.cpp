@@ -1,0 +1,104 @@
+// FreeFEM function of the backbones from grazing (core:
+// plugin/core/periodic/backbone.hpp, user_backbone.hpp; method.md §6):
+//
+//   int n = nbmBackbone(S, F, mode, points, step, "backbone.csv",
+//                       half = true,       // half-period shooting (false: full)
+//                       energy = Emax,     // stop past this vibration energy
+//                       iterations = 50,   // Newton iterations per orbit
+//                       table = P);        // real[int,int] n x 9, the CSV's numbers
+//
+// The backbone of linear mode `mode` (0: the lowest of the system with every
+// contact open) under the constant load F: its grazing orbit, then up to
+// `points` - 1 pseudo-arclength steps of `step`. Prints a summary (linear
+// frequency, grazing amplitude, why it stopped); writes one CSV row per orbit
+// ("" for no file):
+//   omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,periodicity,events
+// (energy and amplitude about the static state; events: grazing, fold-frequency,
+// fold-energy, stability; user_backbone.hpp). Returns the number of orbits.
+#include <fstream>
+#include <iostream>
+
+#include "binding.hpp"
+#include "user_backbone.hpp"
+
+namespace nbm_binding {
+namespace {
+
+class Backbone : public E_F0mps {
+ public:
+  static const int n_name_param = 4;
+  static basicAC_F0::name_and_type name_param[];
+  Expression nargs[n_name_param];
+  Expression handle, F, mode, points, step, file;
+
+  Backbone(const basicAC_F0& args, const Expression (&e)[6])
+      : handle(e[0]), F(e[1]), mode(e[2]), points(e[3]), step(e[4]), file(e[5]) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+  }
+
+  AnyType operator()(Stack s) const override {
+    const char* fn = "nbmBackbone";
+    nbm::Solver& solver = solver_of(GetAny<NbmHandle*>((*handle)(s)), fn);
+    nbm::BackboneOptions o;
+    o.points = GetAny<long>((*points)(s));
+    o.step = GetAny<double>((*step)(s));
+    if (nargs[0]) o.half_period = GetAny<bool>((*nargs[0])(s));
+    if (nargs[1]) o.max_energy = GetAny<double>((*nargs[1])(s));
+    if (nargs[2]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[2])(s)));
+    KNM<double>* table = nargs[3] ? GetAny<KNM<double>*>((*nargs[3])(s)) : nullptr;
+    const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
+    const long j = GetAny<long>((*mode)(s));
+    const string* name = GetAny<string*>((*file)(s));
+    std::ofstream csv;  // opened first: a bad file name fails before the computation
+    if (name && !name->empty()) {
+      csv.open(*name);
+      if (!csv) fail(std::string(fn) + ": cannot write " + *name);
+      csv.precision(12);
+      csv << "omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,"
+             "periodicity,events\n";
+    }
+    const nbm::BackboneReport r =
+        guarded(fn, [&] { return nbm::backbone(solver.problem(), FF, j, o); });
+    std::cout << r.summary;
+    const long n = static_cast<long>(r.points.size());
+    if (table) table->resize(n, 9);
+    for (int k = 0; k < static_cast<int>(n); ++k) {
+      const nbm::BackbonePointReport& p = r.points[k];
+      const double row[9] = {p.omega, p.period, p.energy, p.amplitude, p.contact_time,
+                             static_cast<double>(p.switches), p.max_multiplier,
+                             p.stable ? 1.0 : 0.0, p.periodicity_residual};
+      for (int c = 0; c < 9; ++c) {
+        if (table) (*table)(k, c) = row[c];
+        if (csv.is_open()) csv << row[c] << ",";
+      }
+      if (csv.is_open()) csv << p.events << "\n";
+    }
+    return SetAny<long>(n);
+  }
+  operator aType() const override { return atype<long>(); }
+};
+
+basicAC_F0::name_and_type Backbone::name_param[] = {
+    {"half", &typeid(bool)},
+    {"energy", &typeid(double)},
+    {"iterations", &typeid(long)},
+    {"table", &typeid(KNM<double>*)},
+};
+
+class BackboneOp : public OneOperator {
+ public:
+  BackboneOp()
+      : OneOperator(atype<long>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<long>(),
+                    atype<long>(), atype<double>(), atype<string*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[6];
+    for (int k = 0; k < 6; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new Backbone(args, e);
+  }
+};
+
+}  // namespace
+
+void load_backbone_functions() { Global.Add("nbmBackbone", "(", new BackboneOp); }
+
+}  // namespace nbm_binding
