@@ -11,6 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "bilinear_oscillator.hpp"
 #include "errors.hpp"
 #include "forced_models.hpp"
 #include "forced_orbit.hpp"
@@ -21,6 +22,7 @@ namespace {
 using nbm::Index;
 using nbm::Matrix;
 using nbm::Vector;
+using nbm_test::Bilinear;
 using nbm_test::ForcedChain;
 using nbm_test::internal;
 using Complex = std::complex<double>;
@@ -92,54 +94,10 @@ TEST(ForcedOrbit, LinearLimitIsTheFrequencyResponseOfTheDampedModel) {
   }
 }
 
-// The forced bilinear oscillator: mass m on a spring k, massless contact dof
-// joined by kc, obstacle at g; u'' = F cos(w t) - a_M u' - k u - kc [u - g]_+.
-struct Bilinear {
-  double k = 1, kc = 4, g = 0.5, a_M = 0.1, F = 0.3, w = 0.8;
-
-  nbm_test::ImpactOscillator oscillator() const {
-    nbm_test::ImpactOscillator osc;
-    osc.k = k, osc.kc = kc, osc.g = g, osc.mB = 0;
-    return osc;
-  }
-  Eigen::Vector2d field(double t, const Eigen::Vector2d& x) const {
-    return {x(1), F * std::cos(w * t) - a_M * x(1) - k * x(0) - kc * std::max(x(0) - g, 0.0)};
-  }
-  /// Classical RK4 over `periods` forcing periods from t = 0, `steps` per
-  /// period (the field is only Lipschitz at u = g: the kink costs order).
-  Eigen::Vector2d integrate(Eigen::Vector2d x, int periods, int steps = 40000) const {
-    const double T = 2 * M_PI / w, h = T / steps;
-    for (int p = 0; p < periods; ++p)
-      for (int s = 0; s < steps; ++s) {
-        const double t = p * T + s * h;
-        const auto k1 = field(t, x), k2 = field(t + h / 2, x + h / 2 * k1),
-                   k3 = field(t + h / 2, x + h / 2 * k2), k4 = field(t + h, x + h * k3);
-        x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      }
-    return x;
-  }
-  /// Steady state at t = 0 mod T from x: periods integrated until a period changes
-  /// the state by less than 1e-13.
-  Eigen::Vector2d steady_state(Eigen::Vector2d x = Eigen::Vector2d::Zero()) const {
-    for (int p = 0; p < 2000; ++p) {
-      const Eigen::Vector2d next = integrate(x, 1);
-      if ((next - x).norm() < 1e-13) return next;
-      x = next;
-    }
-    ADD_FAILURE() << "no steady state in 2000 periods";
-    return x;
-  }
-};
-
 nbm::PeriodicOrbit shoot(const Bilinear& b, const nbm::ReducedField& field, int m = 1,
                          Vector u0 = Vector::Zero(1), Vector v0 = Vector::Zero(1),
                          int transient_periods = 0) {
-  nbm::Damping damping;
-  damping.a_M = b.a_M;
-  nbm::HarmonicLoad load;
-  load.omega = b.w;
-  load.cos = {Eigen::Vector2d(b.F, 0)};
-  const nbm::ExactFlow flow(field, damping, load);
+  const nbm::ExactFlow flow(field, b.damping(), b.load());
   nbm::ForcedShootingOptions o;
   o.subharmonic = m;
   o.transient_periods = transient_periods;

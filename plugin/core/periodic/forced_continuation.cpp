@@ -1,0 +1,561 @@
+#include "forced_continuation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <tuple>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+#include <Eigen/SVD>
+
+#include "errors.hpp"
+#include "gauss_newton.hpp"
+
+namespace nbm {
+namespace {
+
+constexpr int kSamples = 256;  // samples of a period for min_gap and peak
+
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(10);
+  s << x;
+  return s.str();
+}
+
+const char* parameter_name(ForcedParameter p) {
+  return p == ForcedParameter::frequency ? "omega" : "amplitude scale";
+}
+
+// The continuation problem in the scaled unknowns y = (u0 / L, v0 / V, p / P)
+// (method.md §9, "Continuation of forced orbits").
+class ScaledProblem {
+ public:
+  ScaledProblem(const ReducedField& field, const Damping& damping, const HarmonicLoad& load,
+                const ForcedContinuationOptions& o, double L, double V, double P)
+      : field_(field), damping_(damping), load_(load), o_(o), n_(field.size()), L_(L), V_(V),
+        P_(P) {}
+
+  Index size() const { return 2 * n_ + 1; }
+  Index p_index() const { return 2 * n_; }
+  Vector scaled(const Vector& u, const Vector& v, double p) const {
+    Vector y(size());
+    y << u / L_, v / V_, p / P_;
+    return y;
+  }
+  Vector u(const Vector& y) const { return y.head(n_) * L_; }
+  Vector v(const Vector& y) const { return y.segment(n_, n_) * V_; }
+  double p(const Vector& y) const { return y(p_index()) * P_; }
+  double scaled_parameter(double p) const { return p / P_; }
+  /// A state perturbation dx = (du, dv) in the scaled unknowns.
+  Vector scaled_state(const Vector& dx) const {
+    Vector y = Vector::Zero(size());
+    y << dx.head(n_) / L_, dx.tail(n_) / V_, 0;
+    return y;
+  }
+
+  ExactFlow flow(double p) const {
+    return ExactFlow(field_, damping_, forced_load(load_, o_.parameter, p));
+  }
+  bool admissible(double p) const {
+    return std::isfinite(p) && (o_.parameter != ForcedParameter::frequency || p > 0);
+  }
+
+  /// The bordered system at y for the period map of subharmonic m: rows
+  /// W (Phi - x) and border . y - target; Jacobian with dPhi/dp by central
+  /// differences (step difference_step * P). A failed flow (a parameter out
+  /// of range, a resonance, Zeno behaviour) is an infinite merit, which the
+  /// Gauss-Newton line search backs away from.
+  GaussNewtonEvaluation evaluate(const Vector& y, bool jacobian, const Vector& border,
+                                 double target, int m) const {
+    GaussNewtonEvaluation e;
+    const double p = this->p(y);
+    if (!y.allFinite() || !admissible(p)) return e;
+    try {
+      const Vector u = this->u(y), v = this->v(y);
+      const ExactFlow f = flow(p);
+      const double T = forced_period(f, m);
+      const FlowResult r = f.integrate(u, v, T, jacobian);
+      e.R.resize(size());
+      e.R << (r.u - u) / L_, (r.v - v) / V_, border.dot(y) - target;
+      // Periodicity relative to the orbit's size as in shoot_forced, floored
+      // at 1e-6 L so that an orbit at rest (zero load) stays measurable.
+      const double ls = std::max({u.norm(), r.u.norm(), 1e-6 * L_, periodic_tiny});
+      e.merit = std::max({(r.u - u).norm() / ls, (r.v - v).norm() / (ls * 2 * M_PI / T),
+                          std::abs(e.R(p_index()))});
+      e.size = e.R.norm();
+      if (!jacobian) return e;
+      const Index N = 2 * n_;
+      Vector unit(N);  // the scale of each state unknown
+      unit << Vector::Constant(n_, L_), Vector::Constant(n_, V_);
+      e.J.resize(size(), size());
+      e.J.topLeftCorner(N, N) = unit.cwiseInverse().asDiagonal() *
+                                (r.monodromy - Matrix::Identity(N, N)) * unit.asDiagonal();
+      const double dp = o_.difference_step * P_;
+      if (!admissible(p - dp)) return GaussNewtonEvaluation{};
+      auto end_state = [&](double q) {
+        const ExactFlow fq = flow(q);
+        const FlowResult rq = fq.integrate(u, v, forced_period(fq, m), false);
+        Vector x(N);
+        x << rq.u, rq.v;
+        return x;
+      };
+      e.J.topRightCorner(N, 1) =
+          (end_state(p + dp) - end_state(p - dp)).cwiseQuotient(unit) * (P_ / (2 * dp));
+      e.J.bottomRows(1) = border.transpose();
+    } catch (const NumericalError&) {
+      return GaussNewtonEvaluation{};
+    }
+    return e;
+  }
+
+  /// Newton on the bordered system from `guess`. Throws NumericalError.
+  GaussNewtonResult correct(const Vector& guess, const Vector& border, double target, int m,
+                            int max_iterations) const {
+    GaussNewtonOptions gn;
+    gn.period_index = -1;
+    gn.tolerance = o_.shooting.tolerance;
+    gn.max_iterations = max_iterations;
+    gn.solver = GaussNewtonOptions::Solver::householder;  // square: LU
+    gn.name = "forced continuation";
+    gn.context = "near " + std::string(parameter_name(o_.parameter)) + " = " +
+                 number(p(guess)) + " ";
+    return gauss_newton(
+        [&](const Vector& y, bool jac) { return evaluate(y, jac, border, target, m); }, guess,
+        gn);
+  }
+
+  /// The unit tangent at a corrected point: J's top rows (the period map)
+  /// annihilate it; with J's last row replaced by `orientation`, the
+  /// solution of J t = e_last has orientation . t = 1, i.e. t points the
+  /// same way. Falls back to the null vector by SVD if that J is singular.
+  Vector tangent(Matrix J, const Vector& orientation) const {
+    J.bottomRows(1) = orientation.transpose();
+    Vector rhs = Vector::Zero(size());
+    rhs(p_index()) = 1;
+    Vector t = J.partialPivLu().solve(rhs);
+    if (!t.allFinite() || !((J * t - rhs).norm() < 1e-6)) {
+      Eigen::JacobiSVD<Matrix> svd(J.topRows(2 * n_), Eigen::ComputeFullV);
+      t = svd.matrixV().col(size() - 1);
+      if (t.dot(orientation) < 0) t = -t;
+    }
+    return t.normalized();
+  }
+
+  /// The analysed point at y (corrected): orbit, samples for min_gap and peak.
+  ForcedPoint point(const Vector& y, const Vector& tangent, double arclength, int iterations,
+                    int m) const {
+    ForcedPoint pt;
+    pt.parameter = p(y);
+    const ExactFlow f = flow(pt.parameter);
+    pt.omega = f.forcing().Omega.front();
+    pt.scale = o_.parameter == ForcedParameter::amplitude ? pt.parameter : 1.0;
+    pt.arclength = arclength;
+    pt.tangent_parameter = tangent(p_index());
+    pt.corrector_iterations = iterations;
+    pt.orbit.u0 = u(y);
+    pt.orbit.v0 = v(y);
+    pt.orbit.period = forced_period(f, m);
+    pt.orbit.iterations = iterations;
+    analyse_orbit(f, pt.orbit, false);
+    pt.switches = static_cast<int>(pt.orbit.switches.size());
+    std::vector<double> times(kSamples);
+    for (int k = 0; k < kSamples; ++k) times[k] = pt.orbit.period * k / kSamples;
+    const FlowResult r = f.integrate(pt.orbit.u0, pt.orbit.v0, pt.orbit.period, false, times);
+    pt.peak = Vector::Zero(n_);
+    pt.min_gap = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < kSamples; ++k) {
+      const Vector uk = r.samples.col(k).head(n_);
+      pt.peak = pt.peak.cwiseMax(uk.cwiseAbs());
+      const Vector full = field_.expand(uk);
+      for (Index c = 0; c < field_.n_contact(); ++c)
+        pt.min_gap = std::min(pt.min_gap, field_.gaps()(c) - full(field_.contact()[c]));
+    }
+    pt.min_gap = std::max(pt.min_gap, 0.0);  // round-off of a closed contact
+    return pt;
+  }
+
+ private:
+  const ReducedField& field_;
+  const Damping& damping_;
+  const HarmonicLoad& load_;
+  const ForcedContinuationOptions& o_;
+  Index n_;
+  double L_, V_, P_;
+};
+
+// Discrete indicators of the events (method.md §9): an event lies between
+// two points where its indicator differs.
+bool is_real(std::complex<double> mu) { return mu.imag() == 0; }
+int real_below_minus_one(const PeriodicOrbit& o) {
+  return static_cast<int>(std::count_if(o.multipliers.begin(), o.multipliers.end(),
+                                        [](auto mu) { return is_real(mu) && mu.real() < -1; }));
+}
+int outside(const PeriodicOrbit& o, bool complex_only) {
+  return static_cast<int>(std::count_if(o.multipliers.begin(), o.multipliers.end(), [&](auto mu) {
+    return std::abs(mu) > 1 && (!complex_only || !is_real(mu));
+  }));
+}
+int indicator(ForcedEventKind kind, const ForcedPoint& pt) {
+  switch (kind) {
+    case ForcedEventKind::fold: return pt.tangent_parameter > 0 ? 1 : -1;
+    case ForcedEventKind::period_doubling: return real_below_minus_one(pt.orbit) % 2;
+    case ForcedEventKind::neimark_sacker: return outside(pt.orbit, true);
+    case ForcedEventKind::grazing: return pt.switches;
+  }
+  return 0;
+}
+bool happened(ForcedEventKind kind, const ForcedPoint& a, const ForcedPoint& b) {
+  if (indicator(kind, a) == indicator(kind, b)) return false;
+  // A complex pair through the unit circle changes the number of multipliers
+  // outside it; two real ones colliding into a pair outside it does not.
+  if (kind == ForcedEventKind::neimark_sacker) return outside(a.orbit, false) != outside(b.orbit, false);
+  return true;
+}
+
+std::complex<double> critical_multiplier(ForcedEventKind kind, const PeriodicOrbit& o) {
+  std::complex<double> best = 0;
+  double distance = std::numeric_limits<double>::infinity();
+  for (const auto mu : o.multipliers) {
+    double d = distance;
+    if (kind == ForcedEventKind::fold) d = std::abs(mu - 1.0);
+    if (kind == ForcedEventKind::period_doubling && is_real(mu)) d = std::abs(mu + 1.0);
+    if (kind == ForcedEventKind::neimark_sacker && !is_real(mu)) d = std::abs(std::abs(mu) - 1);
+    if (d < distance) distance = d, best = mu;
+  }
+  return best;
+}
+
+}  // namespace
+
+HarmonicLoad forced_load(const HarmonicLoad& load, ForcedParameter parameter, double p) {
+  HarmonicLoad out = load;
+  if (parameter == ForcedParameter::frequency) {
+    out.omega = p;
+  } else {
+    for (auto& c : out.cos) c *= p;
+    for (auto& s : out.sin) s *= p;
+  }
+  return out;
+}
+
+std::string to_string(ForcedEventKind kind) {
+  switch (kind) {
+    case ForcedEventKind::fold: return "fold";
+    case ForcedEventKind::period_doubling: return "period doubling";
+    case ForcedEventKind::neimark_sacker: return "Neimark-Sacker";
+    case ForcedEventKind::grazing: return "grazing";
+  }
+  return "?";
+}
+
+namespace {
+
+void check_options(const ReducedField& field, const HarmonicLoad& load, const Vector& u0,
+                   const Vector& v0, const ForcedContinuationOptions& o) {
+  const std::string c = "forced continuation: ";
+  if (load.harmonics() == 0)
+    throw InputError(c + "the load has no harmonics (nothing forces the orbit)");
+  if (!(load.omega > 0) || !std::isfinite(load.omega))
+    throw InputError(c + "the load's omega must be finite and > 0");
+  if (u0.size() != field.size() || v0.size() != field.size())
+    throw InputError(c + "initial guess of size " + std::to_string(u0.size()) + " and " +
+                     std::to_string(v0.size()) + ", expected " + std::to_string(field.size()) +
+                     " interior dofs");
+  if (!(std::isfinite(o.parameter_min) && std::isfinite(o.parameter_max)))
+    throw InputError(c + "parameter_min and parameter_max must be given (finite)");
+  if (!(o.parameter_min < o.parameter_max))
+    throw InputError(c + "parameter_min must be < parameter_max, got " +
+                     number(o.parameter_min) + " and " + number(o.parameter_max));
+  if (o.parameter == ForcedParameter::frequency && !(o.parameter_min > 0))
+    throw InputError(c + "parameter_min must be > 0 for the frequency, got " +
+                     number(o.parameter_min));
+  const double p0 = o.parameter == ForcedParameter::frequency ? load.omega : 1.0;
+  if (p0 < o.parameter_min || p0 > o.parameter_max)
+    throw InputError(c + "the start " + parameter_name(o.parameter) + " = " + number(p0) +
+                     " is outside [parameter_min, parameter_max] = [" + number(o.parameter_min) +
+                     ", " + number(o.parameter_max) + "]");
+  if (o.direction != 1 && o.direction != -1)
+    throw InputError(c + "direction must be +1 or -1, got " + std::to_string(o.direction));
+  if (!(o.min_step > 0) || !(o.step >= o.min_step) || !(o.max_step >= o.step) ||
+      !std::isfinite(o.max_step))
+    throw InputError(c + "steps must satisfy 0 < min_step <= step <= max_step < inf, got " +
+                     number(o.min_step) + ", " + number(o.step) + ", " + number(o.max_step));
+  if (!(o.growth >= 1) || !std::isfinite(o.growth))
+    throw InputError(c + "growth must be finite and >= 1, got " + number(o.growth));
+  if (o.easy_iterations < 0)
+    throw InputError(c + "easy_iterations must be >= 0, got " + std::to_string(o.easy_iterations));
+  if (!(o.max_jump >= 1) || !std::isfinite(o.max_jump))
+    throw InputError(c + "max_jump must be finite and >= 1, got " + number(o.max_jump));
+  if (o.max_points < 1)
+    throw InputError(c + "max_points must be >= 1, got " + std::to_string(o.max_points));
+  if (!(o.length >= 0) || !std::isfinite(o.length))
+    throw InputError(c + "length must be finite and >= 0 (0: automatic), got " + number(o.length));
+  if (!(o.parameter_scale >= 0) || !std::isfinite(o.parameter_scale))
+    throw InputError(c + "parameter_scale must be finite and >= 0 (0: automatic), got " +
+                     number(o.parameter_scale));
+  if (!(o.difference_step > 0) || !(o.difference_step < 0.1))
+    throw InputError(c + "difference_step must be in (0, 0.1), got " + number(o.difference_step));
+  if (o.corrector_iterations < 1)
+    throw InputError(c + "corrector_iterations must be >= 1, got " +
+                     std::to_string(o.corrector_iterations));
+  if (!(o.shooting.tolerance > 0))
+    throw InputError(c + "shooting.tolerance must be > 0");
+  if (o.shooting.subharmonic < 1)
+    throw InputError(c + "shooting.subharmonic must be >= 1, got " +
+                     std::to_string(o.shooting.subharmonic));
+  if (!(o.event_tolerance > 0))
+    throw InputError(c + "event_tolerance must be > 0, got " + number(o.event_tolerance));
+  if (o.max_bisections < 0)
+    throw InputError(c + "max_bisections must be >= 0, got " + std::to_string(o.max_bisections));
+}
+
+// One step of the curve as the continuation keeps it internally.
+struct Node {
+  Vector y, tangent;
+};
+
+class Continuation {
+ public:
+  Continuation(const ScaledProblem& problem, const ForcedContinuationOptions& o, ForcedCurve& curve)
+      : pb_(problem), o_(o), curve_(curve), m_(o.shooting.subharmonic) {}
+
+  /// The corrected point from `guess` on the border row . y = target, with
+  /// its tangent oriented along `orientation`. Throws NumericalError.
+  std::pair<ForcedPoint, Node> solve(const Vector& guess, const Vector& row, double target,
+                                     const Vector& orientation) const {
+    const GaussNewtonResult r = pb_.correct(guess, row, target, m_, o_.corrector_iterations);
+    Node node{r.y, pb_.tangent(r.last.J, orientation)};
+    return {pb_.point(node.y, node.tangent, 0, r.iterations, m_), node};
+  }
+  /// The corrected point at arclength sigma along the tangent of node k.
+  std::pair<ForcedPoint, Node> at(const Node& k, double sigma, const Vector& guess) const {
+    return solve(guess, k.tangent, k.tangent.dot(k.y) + sigma, k.tangent);
+  }
+
+  /// Events between the last two points (indices k, k + 1), located.
+  void events(Index k, const Node& a, const Node& b) {
+    const ForcedPoint &pa = curve_.points[k], &pb = curve_.points[k + 1];
+    const double sigma_end = a.tangent.dot(b.y - a.y);
+    for (ForcedEventKind kind : {ForcedEventKind::fold, ForcedEventKind::period_doubling,
+                                 ForcedEventKind::neimark_sacker, ForcedEventKind::grazing}) {
+      if (!happened(kind, pa, pb)) continue;
+      ForcedEvent e;
+      e.kind = kind;
+      e.point = k;
+      double lo = 0, hi = sigma_end;
+      const int left = indicator(kind, pa);
+      ForcedPoint past = pb;
+      bool bisected = o_.locate_events;
+      for (int it = 0; bisected && hi - lo > o_.event_tolerance; ++it) {
+        if (it >= o_.max_bisections) {
+          bisected = false;
+          break;
+        }
+        const double mid = 0.5 * (lo + hi);
+        try {
+          const Vector guess = a.y + (mid / sigma_end) * (b.y - a.y);
+          const ForcedPoint pt = at(a, mid, guess).first;
+          if (indicator(kind, pt) == left) {
+            lo = mid;
+          } else {
+            hi = mid;
+            past = pt;
+            past.arclength = pa.arclength + mid;
+          }
+        } catch (const NumericalError&) {
+          bisected = false;
+        }
+      }
+      e.bisected = bisected;
+      if (bisected) {
+        e.parameter = past.parameter;
+        e.arclength = pa.arclength + hi;
+      } else {
+        // Interpolation on the chord of the current bracket: linear in the
+        // tangent's parameter component for a fold, the middle otherwise.
+        double theta = 0.5;
+        if (kind == ForcedEventKind::fold && lo == 0 && hi == sigma_end)
+          theta = pa.tangent_parameter / (pa.tangent_parameter - pb.tangent_parameter);
+        const double s = lo + theta * (hi - lo);
+        e.parameter = pa.parameter + (s / sigma_end) * (pb.parameter - pa.parameter);
+        e.arclength = pa.arclength + s;
+      }
+      e.orbit = past.orbit;
+      if (kind != ForcedEventKind::grazing) e.multiplier = critical_multiplier(kind, e.orbit);
+      std::ostringstream d;
+      d << to_string(kind) << " at " << parameter_name(o_.parameter) << " = "
+        << number(e.parameter) << " between points " << k << " and " << k + 1 << " ("
+        << (bisected ? "bisection" : "interpolation") << ")";
+      if (kind != ForcedEventKind::grazing) d << ", multiplier " << e.multiplier;
+      if (kind == ForcedEventKind::grazing)
+        d << ", switches per period " << pa.switches << " -> " << pb.switches;
+      e.description = d.str();
+      curve_.events.push_back(std::move(e));
+    }
+  }
+
+  void run(const Node& first) {
+    std::vector<Node> nodes{first};
+    double h = o_.step;
+    std::string last_failure;
+    const double pmin = o_.parameter_min, pmax = o_.parameter_max;
+    while (static_cast<int>(curve_.points.size()) < o_.max_points) {
+      const Node& k = nodes.back();
+      const ForcedPoint& pk = curve_.points.back();
+      bool on_bound = false;
+      try {
+        auto [pt, node] = at(k, h, k.y + h * k.tangent);
+        const double jump = (node.y - k.y).norm();
+        if (jump > o_.max_jump * h)
+          throw NumericalError("the corrected point jumped " + number(jump / h) +
+                               " times the step (max_jump " + number(o_.max_jump) + ")");
+        if (pt.parameter < pmin || pt.parameter > pmax) {
+          // Land on the bound: the corrector with the border row p = bound,
+          // from the chord's crossing of it.
+          const double bound = pt.parameter < pmin ? pmin : pmax;
+          const double theta = (bound - pk.parameter) / (pt.parameter - pk.parameter);
+          Vector row = Vector::Zero(pb_.size());
+          row(pb_.p_index()) = 1;
+          std::tie(pt, node) =
+              solve(k.y + theta * (node.y - k.y), row, pb_.scaled_parameter(bound), k.tangent);
+          on_bound = true;
+        }
+        pt.arclength = pk.arclength + (node.y - k.y).norm();
+        curve_.points.push_back(std::move(pt));
+        nodes.push_back(node);
+        events(static_cast<Index>(curve_.points.size()) - 2, nodes[nodes.size() - 2], nodes.back());
+        if (curve_.points.back().corrector_iterations <= o_.easy_iterations)
+          h = std::min(h * o_.growth, o_.max_step);
+      } catch (const NumericalError& err) {
+        last_failure = err.what();
+        h /= 2;
+        if (h < o_.min_step) {
+          curve_.stop = ForcedStop::step_too_small;
+          curve_.stop_reason = "stopped at " + std::string(parameter_name(o_.parameter)) + " = " +
+                               number(pk.parameter) + " (point " +
+                               std::to_string(curve_.points.size() - 1) +
+                               "): the corrector failed with the step halved below min_step = " +
+                               number(o_.min_step) + "; last failure: " + last_failure;
+          return;
+        }
+        continue;
+      }
+      if (on_bound) {
+        curve_.stop = ForcedStop::parameter_bound;
+        curve_.stop_reason = "reached the bound " + std::string(parameter_name(o_.parameter)) +
+                             " = " + number(curve_.points.back().parameter);
+        return;
+      }
+    }
+    curve_.stop = ForcedStop::max_points;
+    curve_.stop_reason = "reached max_points = " + std::to_string(o_.max_points) + " at " +
+                         parameter_name(o_.parameter) + " = " +
+                         number(curve_.points.back().parameter);
+  }
+
+ private:
+  const ScaledProblem& pb_;
+  const ForcedContinuationOptions& o_;
+  ForcedCurve& curve_;
+  int m_;
+};
+
+}  // namespace
+
+ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
+                            const HarmonicLoad& load, const Vector& u0, const Vector& v0,
+                            const ForcedContinuationOptions& o) {
+  check_options(field, load, u0, v0, o);
+  const double p0 = o.parameter == ForcedParameter::frequency ? load.omega : 1.0;
+  const ExactFlow flow0(field, damping, load);
+  const PeriodicOrbit first = shoot_forced(flow0, u0, v0, o.shooting);
+
+  ForcedCurve curve;
+  const double omega0 = load.omega;
+  curve.length = o.length > 0 ? o.length
+                              : std::max({first.u0.norm(), first.v0.norm() / omega0, periodic_tiny});
+  curve.parameter_scale = o.parameter_scale > 0 ? o.parameter_scale : std::abs(p0);
+  const ScaledProblem problem(field, damping, load, o, curve.length, curve.length * omega0,
+                              curve.parameter_scale);
+
+  // The first tangent: the null vector of the period map's rows, pointing
+  // towards the parameter's `direction`.
+  Node node{problem.scaled(first.u0, first.v0, p0), Vector()};
+  Vector row = Vector::Zero(problem.size());
+  row(problem.p_index()) = o.direction;
+  const GaussNewtonEvaluation e =
+      problem.evaluate(node.y, true, row, row.dot(node.y), o.shooting.subharmonic);
+  if (!std::isfinite(e.merit))
+    throw NumericalError("forced continuation: the period map failed at the first orbit");
+  node.tangent = problem.tangent(e.J, row);
+  curve.points.push_back(problem.point(node.y, node.tangent, 0, first.iterations,
+                                       o.shooting.subharmonic));
+  Continuation(problem, o, curve).run(node);
+  return curve;
+}
+
+PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Damping& damping,
+                                             const HarmonicLoad& load,
+                                             const ForcedContinuationOptions& o,
+                                             const ForcedCurve& curve, const ForcedEvent& event,
+                                             double amplitude) {
+  const std::string c = "period-doubling branch switching: ";
+  if (event.kind != ForcedEventKind::period_doubling)
+    throw InputError(c + "the event is a " + to_string(event.kind) + ", not a period doubling");
+  if (!(amplitude > 0) || !std::isfinite(amplitude))
+    throw InputError(c + "amplitude must be finite and > 0, got " + number(amplitude));
+  if (curve.points.empty() || !(curve.length > 0) || !(curve.parameter_scale > 0))
+    throw InputError(c + "the curve has no points (not made by continue_forced)");
+  const Index n = field.size();
+  if (event.orbit.u0.size() != n || event.orbit.monodromy.rows() != 2 * n)
+    throw InputError(c + "the event's orbit does not belong to this field");
+  const double L = curve.length;
+  const ScaledProblem problem(field, damping, load, o, L, L * curve.points.front().omega,
+                              curve.parameter_scale);
+
+  // The eigenvector of the real multiplier nearest -1, at t = 0 where the
+  // event's orbit starts: the period-2 orbit leaves x* along it.
+  Eigen::EigenSolver<Matrix> eig(event.orbit.monodromy);
+  Index j = -1;
+  double best = std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < eig.eigenvalues().size(); ++i) {
+    const auto mu = eig.eigenvalues()(i);
+    if (is_real(mu) && std::abs(mu + 1.0) < best) best = std::abs(mu + 1.0), j = i;
+  }
+  if (j < 0) throw NumericalError(c + "the event's orbit has no real multiplier");
+  Vector row = problem.scaled_state(eig.eigenvectors().col(j).real());
+  row.normalize();
+
+  // Bordered corrector on the period-2m map with the condition
+  // e . (y - y*) = amplitude: the period-1 orbit (e . (y - y*) = O(amplitude^2)
+  // near the event) is excluded by construction.
+  const int m = o.shooting.subharmonic;
+  const Vector star = problem.scaled(event.orbit.u0, event.orbit.v0, event.parameter);
+  const GaussNewtonResult r =
+      problem.correct(star + amplitude * row, row, row.dot(star) + amplitude, 2 * m,
+                      std::max(o.corrector_iterations, o.shooting.max_iterations));
+
+  PeriodDoubledOrbit out;
+  out.parameter = problem.p(r.y);
+  const ExactFlow flow = problem.flow(out.parameter);
+  ForcedShootingOptions shooting = o.shooting;
+  shooting.subharmonic = 2 * m;
+  shooting.transient_periods = 0;
+  out.orbit = shoot_forced(flow, problem.u(r.y), problem.v(r.y), shooting);
+  const FlowResult once =
+      flow.integrate(out.orbit.u0, out.orbit.v0, forced_period(flow, m), false);
+  Vector x0(2 * n), x1(2 * n);
+  x0 << out.orbit.u0, out.orbit.v0;
+  x1 << once.u, once.v;
+  out.separation = problem.scaled_state(x1 - x0).norm();
+  if (!(out.separation > 0.01 * amplitude))
+    throw NumericalError(c + "the orbit found at " + parameter_name(o.parameter) + " = " +
+                         number(out.parameter) + " is the period-1 orbit (separation " +
+                         number(out.separation) + ")");
+  return out;
+}
+
+}  // namespace nbm
