@@ -5,6 +5,9 @@
 
 #include <cmath>
 #include <complex>
+#include <cstdio>
+#include <fstream>
+#include <string>
 
 #include "bars.hpp"
 #include "errors.hpp"
@@ -126,6 +129,83 @@ TEST(UserForcedOrbit, DefaultProbeIsTheDofOfLargestAmplitude) {
   EXPECT_NEAR(r.amplitude, best, 1e-12 * best);
 }
 
+// The bar's damped frequency response at the probe, |X_p(w)| (one harmonic
+// Fc - i Fs), by the dense Guyan solve of the linear-limit test.
+double bar_response(const ForcedBar& b, double w, int p) {
+  nbm::SparseMatrix Ms, Ks;
+  b.bar.assemble(Ms, Ks);
+  const int N = b.bar.N, n = N - 1;
+  const Matrix M = Matrix(Ms).block(1, 1, N, N), K = Matrix(Ks).block(1, 1, N, N);
+  Matrix P = Matrix::Zero(N, n);
+  P.topRows(n).setIdentity();
+  P.row(n) = -K.block(n, 0, 1, n) / K(n, n);
+  Vector Fc(N), Fs(N);
+  for (int i = 0; i < N; ++i) Fc(i) = b.Fc[i + 1], Fs(i) = b.Fs[i + 1];
+  const Matrix C = b.o.rayleigh_mass * M + b.o.rayleigh_stiffness * K;
+  const Eigen::MatrixXcd Z = (P.transpose() * (K - w * w * M) * P).cast<Complex>() +
+                             Complex(0, w) * (P.transpose() * C * P).cast<Complex>();
+  const Eigen::VectorXcd X = P.cast<Complex>() *
+      Z.partialPivLu().solve(P.transpose().cast<Complex>() *
+                             (Fc.cast<Complex>() - Complex(0, 1) * Fs.cast<Complex>()));
+  return std::abs(X(p - 1));
+}
+
+// A frequency sweep through the first resonance of the linear bar: every
+// point's amplitude is the direct frequency response (to the 512-sample
+// resolution of the extremes), all stable, no event, the curve ends at `to`.
+TEST(UserForcedOrbit, ResponseCurveOfTheLinearBarIsItsFrequencyResponse) {
+  ForcedBar b;
+  b.o.omega = 1.0;
+  nbm::ForcedResponseOptions r;
+  r.to = 2.2;
+  r.step = 0.05;
+  r.max_step = 2;  // the arclength counts displacements in units of the first orbit's
+  const auto curve = nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero,
+                                          b.o, r);
+  ASSERT_GE(curve.points.size(), 5u) << curve.stop_reason;
+  EXPECT_EQ(curve.probe, b.o.probe);
+  EXPECT_NE(curve.stop_reason.find("bound"), std::string::npos) << curve.stop_reason;
+  EXPECT_TRUE(curve.events.empty());
+  EXPECT_NEAR(curve.points.back().omega, 2.2, 1e-9);
+  double top = 0;
+  for (const auto& p : curve.points) {
+    const double ref = bar_response(b, p.omega, b.o.probe);
+    EXPECT_NEAR(p.amplitude, ref, 1e-4 * ref) << "omega " << p.omega;
+    EXPECT_TRUE(p.stable);
+    EXPECT_EQ(p.switches, 0);
+    top = std::max(top, p.amplitude);
+  }
+  EXPECT_GT(top, 3 * curve.points.front().amplitude);  // it crossed the resonance (pi/2)
+  EXPECT_NEAR(curve.last.omega, 2.2, 1e-9);
+  EXPECT_NE(curve.last.summary.find("pseudo-arclength continuation in omega"), std::string::npos);
+  // The CSV: a header and a row per point.
+  const std::string path = testing::TempDir() + "forced-response.csv";
+  nbm::write_forced_response(curve, path);
+  std::ifstream f(path);
+  std::string line;
+  int rows = 0;
+  std::getline(f, line);
+  EXPECT_EQ(line.rfind("point,omega,scale,", 0), 0u);
+  while (std::getline(f, line)) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(curve.points.size()));
+  std::remove(path.c_str());
+}
+
+// In the amplitude factor the linear response grows in proportion.
+TEST(UserForcedOrbit, AmplitudeCurveOfTheLinearBarIsProportional) {
+  ForcedBar b;
+  nbm::ForcedResponseOptions r;
+  r.parameter = "amplitude";
+  r.to = 3;
+  r.from = 0.5;
+  const auto curve = nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero,
+                                          b.o, r);
+  ASSERT_GE(curve.points.size(), 3u);
+  const double unit = curve.points.front().amplitude;
+  for (const auto& p : curve.points) EXPECT_NEAR(p.amplitude, p.scale * unit, 1e-9 * p.amplitude);
+  EXPECT_NEAR(curve.points.back().scale, 3, 1e-9);
+}
+
 template <class F>
 void expect_input_error(F&& f, const std::string& text) {
   try {
@@ -160,9 +240,30 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   expect_input_error(
       [&] { nbm::forced_orbit(*b.problem, b.F0, {}, {}, b.zero, b.zero, b.o); },
       "Fc, Fs: no load harmonic");
+  auto response = [&](nbm::ForcedResponseOptions r, const std::string& text) {
+    expect_input_error(
+        [&] { nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero, b.o, r); },
+        text);
+  };
+  nbm::ForcedResponseOptions r;
+  response(r, "to: expected a finite end of the omega range");
+  r.to = b.o.omega;
+  response(r, "to: expected a finite end");
+  r.to = 3;
+  r.from = 2.5;
+  response(r, "from: expected the other end of the omega range");
+  r.from = NAN;
+  r.parameter = "force";
+  response(r, "parameter: \"force\"; expected \"omega\" or \"amplitude\"");
+  r.parameter = "omega";
+  r.step = 0;
+  response(r, "step, maxStep: expected 0 < step <= maxStep");
+  r.step = 0.02;
+  r.max_points = 0;
+  response(r, "points: expected >= 1");
   // Autonomous continuation refuses forced orbits.
-  const auto r = b.solve();
-  expect_input_error([&] { nbm::continue_orbit(r, r, 0.1); },
+  const auto orbit = b.solve();
+  expect_input_error([&] { nbm::continue_orbit(orbit, orbit, 0.1); },
                      "continuation follows autonomous orbits");
 }
 

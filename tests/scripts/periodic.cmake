@@ -95,8 +95,10 @@ nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the NBM object was not
 # reach every orbit of the sweep (paper NBM, consistent mass) is the direct
 # frequency response of the damped model solved in the script, to 1e-8.
 set(FORCED_PLATE ${PROJECT_SOURCE_DIR}/edp/forced-plate.edp)
+# The continuation through the linear resonance: every point's amplitude is
+# the direct response's (to the 512-sample resolution of the extremes).
 nbm_summary_test(forced-plate-linear
-  "linearDifference<=1e-8 periodicity<=1e-10 contact<=0 unstable<=0 failed<=0"
+  "linearDifference<=1e-8 periodicity<=1e-10 contact<=0 unstable<=0 failed<=0 arcLinearDifference<=1e-4 arcContact<=0 arcUnstable<=0 folds<=0 arcEnd>=1.399"
   ${FORCED_PLATE} -out forced-linear -mass consistent -contactFree 1 -points 7 -down 0 -settle 0)
 # With the wall in reach: the sweep finds stable orbits with contact; the
 # damped Newmark stepper started 30% away from the stable contact orbit of
@@ -105,4 +107,11 @@ nbm_summary_test(forced-plate-linear
 # T/800 (what remains is the stepper's own error).
 nbm_summary_test(forced-plate-settle
   "settleStart>=0.29 settleDistance<=1e-3 settleDistanceFine<=5e-4 settleRatio<=0.8 contact>=1 stable>=1 periodicity<=1e-10 complementarity<=1e-12"
-  ${FORCED_PLATE} -out forced-settle -points 31 -down 0)
+  ${FORCED_PLATE} -out forced-settle -points 31 -down 0 -arclength 0)
+# The response curve by continuation in omega (nbmForcedResponse) against the
+# sweeps, which know nothing of it: the two folds it finds lie within one
+# sweep step (0.01) of where the sweeps jump (up: off the upper branch;
+# down: onto it); every point periodic to 1e-10; the curve reaches its end.
+nbm_summary_test(forced-plate-curve
+  "folds>=2 foldCheckUp<=0.011 foldCheckDown<=0.011 arcPeriodicity<=1e-10 arcEnd>=1.399 arcUnstable>=1 periodicity<=1e-10"
+  ${FORCED_PLATE} -out forced-curve -settle 0)

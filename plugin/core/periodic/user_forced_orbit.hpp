@@ -13,6 +13,7 @@
 #pragma once
 
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "periodic_defaults.hpp"
@@ -48,5 +49,67 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
                          const std::vector<std::vector<double>>& load_sin,
                          const std::vector<double>& u, const std::vector<double>& v,
                          const ForcedOrbitOptions& options);
+
+/// Continuation of the forced orbit in the excitation frequency or in the
+/// amplitude of the harmonics (forced_continuation.hpp): a frequency- or
+/// amplitude-response curve with stability and events.
+struct ForcedResponseOptions {
+  std::string parameter = "omega";  ///< or "amplitude": a factor on Fc, Fs (1 at the start)
+  /// The curve starts at the orbit of `omega` (or at the factor 1), heads
+  /// towards `to` and stays within [min(from, to), max(from, to)]; `from`
+  /// NaN: the start.
+  double from = std::numeric_limits<double>::quiet_NaN();
+  double to = std::numeric_limits<double>::quiet_NaN();
+  double step = 0.02, max_step = 0.2;  ///< arclength steps in scaled unknowns
+  int max_points = 200;
+  bool locate_events = true;  ///< by bisection on the arclength (else interpolated)
+};
+
+struct ForcedResponsePoint {
+  double omega = 0, scale = 1, arclength = 0;
+  /// The probe dof (ForcedResponse::probe) over one period, as in OrbitReport.
+  double amplitude = 0, probe_min = 0, probe_max = 0;
+  double energy = 0, energy_max = 0;  ///< total energy at t = 0 and its largest value
+  double contact_time = 0, min_gap = 0, periodicity_residual = 0;
+  long switches = 0;
+  std::vector<double> moduli;  ///< |Floquet multipliers|, decreasing
+  bool stable = false;
+  std::string events;  ///< events between the previous point and this one, '+'-joined
+};
+
+struct ForcedResponseEvent {
+  std::string kind;  ///< "fold", "period doubling", "Neimark-Sacker", "grazing"
+  double parameter = 0, arclength = 0;
+  long point = 0;  ///< the point just past it
+  double multiplier_re = 0, multiplier_im = 0;  ///< the critical one (0 for grazing)
+  std::string description;
+};
+
+struct ForcedResponse {
+  std::vector<ForcedResponsePoint> points;
+  std::vector<ForcedResponseEvent> events;
+  long probe = -1;  ///< the user dof of the amplitudes
+  std::string stop_reason;
+  OrbitReport last;  ///< the last point as an orbit (nbmOrbit* accessors)
+};
+
+/// The response curve through the forced orbit of `orbit` (its omega,
+/// damping, subharmonic, transient, iterations; its probe, or -1: the dof of
+/// largest amplitude at the first point). Throws InputError naming the
+/// argument (as forced_orbit, and parameter, from, to, step, maxStep,
+/// points), NumericalError if the first orbit is not found; the curve ends
+/// early with a stop reason if the corrector fails further on.
+ForcedResponse forced_response(const ContactProblem& problem, const std::vector<double>& F0,
+                               const std::vector<std::vector<double>>& load_cos,
+                               const std::vector<std::vector<double>>& load_sin,
+                               const std::vector<double>& u, const std::vector<double>& v,
+                               const ForcedOrbitOptions& orbit,
+                               const ForcedResponseOptions& options);
+
+/// One CSV row per point: point, omega, scale, arclength, amplitude,
+/// probe_min, probe_max, energy, energy_max, contact_time, switches,
+/// min_gap, max_multiplier, mu2, mu3, mu4 (moduli), stable, periodicity,
+/// event. Throws InputError if the file cannot be written.
+void write_forced_response(const ForcedResponse& response, const std::string& path);
 
 }  // namespace nbm
