@@ -90,6 +90,16 @@ nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: the NBM object has an
 nbm_bad_orbit_case(forced-amplitude-autonomous [[nbmOrbitAmplitude: the last orbit is not a forced orbit]])
 nbm_bad_orbit_case(forced-continue [[nbmContinueOrbit: continuation follows autonomous orbits]])
 nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the NBM object was not constructed]])
+nbm_bad_valid(orbit-valid-response ${NBM_ORBIT_CASES} -case valid-response)
+nbm_bad_orbit_case(response-parameter [[nbmForcedResponse: parameter: "force".*expected "omega" or "amplitude"]])
+nbm_bad_orbit_case(response-to [[nbmForcedResponse: to: the end of the parameter range is required]])
+nbm_bad_orbit_case(response-to-start [[nbmForcedResponse: to: expected a finite end of the omega range, other than the start]])
+nbm_bad_orbit_case(response-from [[nbmForcedResponse: from: expected the other end of the omega range]])
+nbm_bad_orbit_case(response-step [[nbmForcedResponse: step, maxStep: expected 0 < step <= maxStep]])
+nbm_bad_orbit_case(response-points [[nbmForcedResponse: points: expected >= 1]])
+nbm_bad_orbit_case(response-omega [[nbmForcedResponse: omega: expected a finite excitation frequency > 0]])
+nbm_bad_orbit_case(response-contact-load [[nbmForcedResponse: Fc \(harmonic 1\): non-zero on the normal component of contact node 0]])
+nbm_bad_orbit_case(response-file [[nbmForcedResponse: file: cannot write /nonexistent-folder/curve.csv]])
 
 # The forced plate (edp/forced-plate.edp). Linear limit: with the wall out of
 # reach every orbit of the sweep (paper NBM, consistent mass) is the direct
