@@ -137,59 +137,88 @@ double grazing_frequency(const Bilinear& b, double lo, double hi) {
 }
 
 // The hardening bilinear oscillator of test_forced_orbits.cpp (three orbits
-// at w = 1.3), swept through its resonance: the upper branch grazes, turns at
-// a fold, comes back unstable to a second fold and rejoins the contact-free
-// branch, which grazes again on the way.
-TEST(ForcedContinuation, BilinearSweepFindsTwoFoldsWithTheUnstableBranchBetween) {
+// at w = 1.3), swept from w = 0.5 through its resonance: it grazes, goes
+// through a period-doubling interval (the next test), climbs the upper
+// branch to a fold, comes back unstable to a second fold, and leaves the
+// contact at a second grazing onto the contact-free lower branch.
+struct BilinearSweep {
   Bilinear b;
-  b.w = 0.5;
-  const auto field = b.oscillator().field();
+  nbm::ReducedField field = b.oscillator().field();
   nbm::ForcedContinuationOptions o;
-  o.parameter_min = 0.5, o.parameter_max = 1.8;
-  o.step = 0.05, o.max_step = 0.1;
-  const auto curve =
-      nbm::continue_forced(field, b.damping(), b.load(), Vector::Zero(1), Vector::Zero(1), o);
-  EXPECT_EQ(curve.stop, nbm::ForcedStop::parameter_bound) << curve.stop_reason;
-  std::vector<nbm::ForcedEvent> folds, grazings;
-  for (const auto& e : curve.events) {
-    if (e.kind == nbm::ForcedEventKind::fold) folds.push_back(e);
-    if (e.kind == nbm::ForcedEventKind::grazing) grazings.push_back(e);
-    EXPECT_TRUE(e.kind == nbm::ForcedEventKind::fold || e.kind == nbm::ForcedEventKind::grazing)
-        << e.description;
-    EXPECT_TRUE(e.bisected) << e.description;
+  nbm::ForcedCurve curve;
+  BilinearSweep() {
+    b.w = 0.5;
+    o.parameter_min = 0.5, o.parameter_max = 1.8;
+    o.step = 0.05, o.max_step = 0.25, o.max_points = 400;
+    curve = nbm::continue_forced(field, b.damping(), b.load(), Vector::Zero(1), Vector::Zero(1), o);
   }
+  std::vector<nbm::ForcedEvent> events(nbm::ForcedEventKind kind) const {
+    std::vector<nbm::ForcedEvent> out;
+    for (const auto& e : curve.events)
+      if (e.kind == kind) out.push_back(e);
+    return out;
+  }
+};
+
+TEST(ForcedContinuation, BilinearSweepFindsTwoFoldsWithTheUnstableBranchBetween) {
+  const BilinearSweep sweep;
+  const auto& curve = sweep.curve;
+  const Bilinear& b = sweep.b;
+  EXPECT_EQ(curve.stop, nbm::ForcedStop::parameter_bound) << curve.stop_reason;
+  for (const auto& e : curve.events) {
+    EXPECT_TRUE(e.bisected) << e.description;
+    EXPECT_NE(e.kind, nbm::ForcedEventKind::neimark_sacker) << e.description;
+  }
+  const auto folds = sweep.events(nbm::ForcedEventKind::fold);
+  const auto doublings = sweep.events(nbm::ForcedEventKind::period_doubling);
+  const auto grazings = sweep.events(nbm::ForcedEventKind::grazing);
   ASSERT_EQ(folds.size(), 2u) << curve.stop_reason;
+  ASSERT_EQ(doublings.size(), 2u);
   const auto& P = curve.points;
   for (std::size_t f = 0; f < 2; ++f) {
     const auto& e = folds[f];
     // The frequency turns: a maximum (first fold) or a minimum (second) of
     // omega along the curve, against its neighbours on both sides.
     const double sign = f == 0 ? 1 : -1;
-    for (Index j = std::max<Index>(0, e.point - 2);
-         j <= std::min<Index>(P.size() - 1, e.point + 3); ++j)
+    for (Index j = std::max<Index>(0, e.point - 3);
+         j <= std::min<Index>(P.size() - 1, e.point + 4); ++j)
       EXPECT_GE(sign * (e.parameter - P[j].parameter), 0) << e.description << " point " << j;
+    EXPECT_GT(sign * (P[e.point].parameter - P[e.point - 3].parameter), 0);
+    EXPECT_GT(sign * (P[e.point + 1].parameter - P[e.point + 4].parameter), 0);
     EXPECT_LT(P[e.point].tangent_parameter * P[e.point + 1].tangent_parameter, 0);
-    EXPECT_LT(std::abs(e.multiplier - 1.0), 1e-3) << e.description;
+    EXPECT_LT(std::abs(e.multiplier - 1.0), 1e-6) << e.description;  // measured 1e-10, 3e-8
     EXPECT_EQ(e.multiplier.imag(), 0);
   }
   EXPECT_GT(folds[0].parameter, 1.3);
   EXPECT_LT(folds[1].parameter, 1.3);
+  // Unstable exactly between the folds and between the period doublings.
   for (Index j = 0; j < static_cast<Index>(P.size()); ++j) {
-    const bool between = j > folds[0].point && j <= folds[1].point;
-    EXPECT_EQ(P[j].orbit.stable, !between) << "point " << j << " w " << P[j].omega;
+    const bool saddle = j > folds[0].point && j <= folds[1].point;
+    const bool doubled = j > doublings[0].point && j <= doublings[1].point;
+    EXPECT_EQ(P[j].orbit.stable, !saddle && !doubled) << "point " << j << " w " << P[j].omega;
   }
-  // Grazing twice: on the way up (contact appears) and back on the lower
-  // branch (contact vanishes), each where the contact-free amplitude is g.
+  // Grazing twice: on the way up (contact appears) and at the end of the
+  // unstable branch (contact vanishes), each where the contact-free
+  // amplitude F / |k - w^2 + i a_M w| is g.
   ASSERT_EQ(grazings.size(), 2u);
-  EXPECT_NEAR(grazings[0].parameter, grazing_frequency(b, 0.5, 1.0), 1e-7);
-  EXPECT_NEAR(grazings[1].parameter, grazing_frequency(b, 1.05, 1.8), 1e-7);
+  // (Measured: 1.1e-10 and 1e-11; the bisection stops at 1e-8 in the
+  // scaled arclength, P = 0.5.)
+  EXPECT_NEAR(grazings[0].parameter, grazing_frequency(b, 0.5, 1.0), 1e-8);
+  EXPECT_NEAR(grazings[1].parameter, grazing_frequency(b, 1.05, 1.8), 1e-8);
   EXPECT_EQ(P[grazings[0].point].switches, 0);
   EXPECT_GT(P[grazings[0].point + 1].switches, 0);
+  EXPECT_GT(P[grazings[1].point].switches, 0);
+  EXPECT_EQ(P[grazings[1].point + 1].switches, 0);
+  EXPECT_GT(P[grazings[0].point].min_gap, 0);
+  EXPECT_EQ(P[grazings[0].point + 1].min_gap, 0);
 
   // Stable points against brute-force RK4 to steady state, started 1e-3
-  // away: the first point, the upper branch at the first fold's last point,
-  // and the last point.
-  for (Index j : {Index(0), folds[0].point, static_cast<Index>(P.size()) - 1}) {
+  // away: the first point, the upper branch near w = 1.2 and the last point.
+  Index upper = 0;
+  for (Index j = 0; j < folds[0].point; ++j)
+    if (std::abs(P[j].omega - 1.2) < std::abs(P[upper].omega - 1.2)) upper = j;
+  for (Index j : {Index(0), upper, static_cast<Index>(P.size()) - 1}) {
+    ASSERT_TRUE(P[j].orbit.stable);
     Bilinear bj = b;
     bj.w = P[j].omega;
     const Eigen::Vector2d x(P[j].orbit.u0(0), P[j].orbit.v0(0));
@@ -197,6 +226,137 @@ TEST(ForcedContinuation, BilinearSweepFindsTwoFoldsWithTheUnstableBranchBetween)
     EXPECT_NEAR(x(0), steady(0), 2e-8) << "w " << bj.w;
     EXPECT_NEAR(x(1), steady(1), 2e-8) << "w " << bj.w;
   }
+}
+
+// The same sweep crosses a period-doubling interval on the lower part of the
+// contact branch: a real multiplier leaves the unit circle through -1 and
+// comes back. Branch switching at the first one finds a period-2 orbit,
+// confirmed by brute-force RK4: it comes back after two forcing periods, not
+// after one.
+TEST(ForcedContinuation, PeriodDoublingIsConfirmedByThePeriodTwoOrbit) {
+  const BilinearSweep sweep;
+  const auto doublings = sweep.events(nbm::ForcedEventKind::period_doubling);
+  ASSERT_EQ(doublings.size(), 2u) << sweep.curve.stop_reason;
+  const auto& P = sweep.curve.points;
+  for (const auto& e : doublings) {
+    EXPECT_TRUE(e.bisected);
+    EXPECT_EQ(e.multiplier.imag(), 0);
+    EXPECT_NEAR(e.multiplier.real(), -1, 1e-6) << e.description;  // measured 5e-9, 3e-10
+    EXPECT_GT(P[e.point].switches, 0);
+    // One side has a real multiplier below -1, the other none.
+    auto below = [](const nbm::PeriodicOrbit& o) {
+      return std::count_if(o.multipliers.begin(), o.multipliers.end(),
+                           [](Complex mu) { return mu.imag() == 0 && mu.real() < -1; });
+    };
+    EXPECT_NE(below(P[e.point].orbit), below(P[e.point + 1].orbit));
+  }
+  const auto branch = nbm::switch_at_period_doubling(sweep.field, sweep.b.damping(), sweep.b.load(),
+                                                     sweep.o, sweep.curve, doublings[0], 1e-2);
+  EXPECT_NEAR(branch.parameter, doublings[0].parameter, 1e-2);
+  EXPECT_GT(branch.separation, 1e-3);
+  EXPECT_LT(branch.orbit.periodicity_residual, 1e-10);
+  Bilinear b = sweep.b;
+  b.w = branch.parameter;
+  const Eigen::Vector2d x0(branch.orbit.u0(0), branch.orbit.v0(0));
+  const Eigen::Vector2d once = b.integrate(x0, 1), twice = b.integrate(x0, 2);
+  EXPECT_LT((twice - x0).norm(), 1e-7) << "a period-2 orbit of the RK4 flow";
+  EXPECT_GT((once - x0).norm(), 1e-3) << "not the period-1 orbit";
+  // The period-1 orbit it branched from is a fixed point of one period.
+  const Eigen::Vector2d xs(doublings[0].orbit.u0(0), doublings[0].orbit.v0(0));
+  Bilinear bs = sweep.b;
+  bs.w = doublings[0].parameter;
+  EXPECT_LT((bs.integrate(xs, 1) - xs).norm(), 1e-7);
+  // Not a period doubling: a named error.
+  const auto folds = sweep.events(nbm::ForcedEventKind::fold);
+  ASSERT_FALSE(folds.empty());
+  EXPECT_THROW(nbm::switch_at_period_doubling(sweep.field, sweep.b.damping(), sweep.b.load(),
+                                              sweep.o, sweep.curve, folds[0]),
+               nbm::InputError);
+}
+
+// Step control: a corrected point always lies at least one step from the
+// previous one (on the hyperplane at `step`), so max_jump = 1 rejects every
+// point that needed any correction; the step halves down to min_step and
+// the curve stops with the reason. max_points ends a curve too.
+TEST(ForcedContinuation, StepControlStopsWithAReason) {
+  Bilinear b;
+  b.w = 1.0;
+  const auto field = b.oscillator().field();
+  nbm::ForcedContinuationOptions o;
+  o.parameter_min = 0.5, o.parameter_max = 1.8;
+  o.max_jump = 1;
+  o.step = 0.04, o.min_step = 0.01;
+  const auto stuck =
+      nbm::continue_forced(field, b.damping(), b.load(), Vector::Zero(1), Vector::Zero(1), o);
+  EXPECT_EQ(stuck.stop, nbm::ForcedStop::step_too_small);
+  EXPECT_EQ(stuck.points.size(), 1u);
+  EXPECT_NE(stuck.stop_reason.find("jumped"), std::string::npos) << stuck.stop_reason;
+  EXPECT_NE(stuck.stop_reason.find("min_step"), std::string::npos) << stuck.stop_reason;
+
+  o.max_jump = 2;
+  o.max_points = 5;
+  const auto short_curve =
+      nbm::continue_forced(field, b.damping(), b.load(), Vector::Zero(1), Vector::Zero(1), o);
+  EXPECT_EQ(short_curve.stop, nbm::ForcedStop::max_points);
+  EXPECT_EQ(short_curve.points.size(), 5u);
+  // Easy correctors grow the step (up to max_step): the arclength between
+  // points increases along this smooth part.
+  const auto& P = short_curve.points;
+  EXPECT_GT(P[4].arclength - P[3].arclength, P[1].arclength - P[0].arclength);
+}
+
+TEST(ForcedContinuation, BadInputIsANamedError) {
+  Bilinear b;
+  const auto field = b.oscillator().field();
+  const Vector z = Vector::Zero(1);
+  nbm::ForcedContinuationOptions good;
+  good.parameter_min = 0.5, good.parameter_max = 1.8;
+  auto run = [&](const nbm::ForcedContinuationOptions& o, const nbm::HarmonicLoad& load,
+                 const Vector& u0) {
+    return nbm::continue_forced(field, b.damping(), load, u0, z, o);
+  };
+  auto bad = [&](auto edit) {
+    nbm::ForcedContinuationOptions o = good;
+    edit(o);
+    EXPECT_THROW(run(o, b.load(), z), nbm::InputError);
+  };
+  using O = nbm::ForcedContinuationOptions;
+  bad([](O& o) { o.parameter_min = NAN; });
+  bad([](O& o) { o.parameter_max = INFINITY; });
+  bad([](O& o) { o.parameter_min = 2, o.parameter_max = 1; });    // reversed
+  bad([](O& o) { o.parameter_min = 0; });                         // frequency <= 0
+  bad([](O& o) { o.parameter_min = 0.9, o.parameter_max = 1.8; }); // start 0.8 outside
+  bad([](O& o) { o.direction = 0; });
+  bad([](O& o) { o.step = 0; });
+  bad([](O& o) { o.step = -0.1; });
+  bad([](O& o) { o.min_step = 0; });
+  bad([](O& o) { o.min_step = 0.1, o.step = 0.05; });
+  bad([](O& o) { o.max_step = 0.01; });
+  bad([](O& o) { o.max_step = INFINITY; });
+  bad([](O& o) { o.growth = 0.5; });
+  bad([](O& o) { o.easy_iterations = -1; });
+  bad([](O& o) { o.max_jump = 0.5; });
+  bad([](O& o) { o.max_points = 0; });
+  bad([](O& o) { o.length = -1; });
+  bad([](O& o) { o.parameter_scale = NAN; });
+  bad([](O& o) { o.difference_step = 0; });
+  bad([](O& o) { o.difference_step = 0.5; });
+  bad([](O& o) { o.corrector_iterations = 0; });
+  bad([](O& o) { o.shooting.tolerance = 0; });
+  bad([](O& o) { o.shooting.subharmonic = 0; });
+  bad([](O& o) { o.event_tolerance = 0; });
+  bad([](O& o) { o.max_bisections = -1; });
+  bad([](O& o) { o.parameter = nbm::ForcedParameter::amplitude, o.parameter_min = 1.5; });
+  bad([](O& o) { o.parameter_max = 0.8; });  // starts on the bound it leaves through
+  EXPECT_THROW(run(good, b.load(), Vector::Zero(2)), nbm::InputError);  // guess size
+  nbm::HarmonicLoad unforced;
+  unforced.omega = 1;
+  EXPECT_THROW(run(good, unforced, z), nbm::InputError);  // no harmonics
+  EXPECT_NO_THROW(run([&] {
+    auto o = good;
+    o.max_points = 2;
+    return o;
+  }(), b.load(), z));
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 #include "forced_continuation.hpp"
 
 #include <algorithm>
+#include <cstddef>
 #include <cmath>
 #include <sstream>
 #include <string>
@@ -211,7 +212,8 @@ bool happened(ForcedEventKind kind, const ForcedPoint& a, const ForcedPoint& b) 
   if (indicator(kind, a) == indicator(kind, b)) return false;
   // A complex pair through the unit circle changes the number of multipliers
   // outside it; two real ones colliding into a pair outside it does not.
-  if (kind == ForcedEventKind::neimark_sacker) return outside(a.orbit, false) != outside(b.orbit, false);
+  if (kind == ForcedEventKind::neimark_sacker)
+    return outside(a.orbit, false) != outside(b.orbit, false);
   return true;
 }
 
@@ -279,6 +281,10 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
                      ", " + number(o.parameter_max) + "]");
   if (o.direction != 1 && o.direction != -1)
     throw InputError(c + "direction must be +1 or -1, got " + std::to_string(o.direction));
+  if (p0 == (o.direction > 0 ? o.parameter_max : o.parameter_min))
+    throw InputError(c + "the start " + parameter_name(o.parameter) + " = " + number(p0) +
+                     " is on the bound the direction " + std::to_string(o.direction) +
+                     " leaves through");
   if (!(o.min_step > 0) || !(o.step >= o.min_step) || !(o.max_step >= o.step) ||
       !std::isfinite(o.max_step))
     throw InputError(c + "steps must satisfy 0 < min_step <= step <= max_step < inf, got " +
@@ -323,21 +329,26 @@ class Continuation {
       : pb_(problem), o_(o), curve_(curve), m_(o.shooting.subharmonic) {}
 
   /// The corrected point from `guess` on the border row . y = target, with
-  /// its tangent oriented along `orientation`. Throws NumericalError.
-  std::pair<ForcedPoint, Node> solve(const Vector& guess, const Vector& row, double target,
-                                     const Vector& orientation) const {
+  /// its tangent oriented away from node k (along the secant from k: at a
+  /// corner of a nonsmooth curve the tangent may turn by more than 90
+  /// degrees, and orienting it along k's would send the curve back).
+  /// Throws NumericalError.
+  std::pair<ForcedPoint, Node> solve(const Node& k, const Vector& guess, const Vector& row,
+                                     double target) const {
     const GaussNewtonResult r = pb_.correct(guess, row, target, m_, o_.corrector_iterations);
-    Node node{r.y, pb_.tangent(r.last.J, orientation)};
+    const Vector secant = r.y - k.y;
+    Node node{r.y, pb_.tangent(r.last.J, secant.norm() > 0 ? secant : k.tangent)};
     return {pb_.point(node.y, node.tangent, 0, r.iterations, m_), node};
   }
   /// The corrected point at arclength sigma along the tangent of node k.
   std::pair<ForcedPoint, Node> at(const Node& k, double sigma, const Vector& guess) const {
-    return solve(guess, k.tangent, k.tangent.dot(k.y) + sigma, k.tangent);
+    return solve(k, guess, k.tangent, k.tangent.dot(k.y) + sigma);
   }
 
   /// Events between the last two points (indices k, k + 1), located.
   void events(Index k, const Node& a, const Node& b) {
     const ForcedPoint &pa = curve_.points[k], &pb = curve_.points[k + 1];
+    const auto first_new = static_cast<std::ptrdiff_t>(curve_.events.size());
     const double sigma_end = a.tangent.dot(b.y - a.y);
     for (ForcedEventKind kind : {ForcedEventKind::fold, ForcedEventKind::period_doubling,
                                  ForcedEventKind::neimark_sacker, ForcedEventKind::grazing}) {
@@ -395,16 +406,19 @@ class Continuation {
       e.description = d.str();
       curve_.events.push_back(std::move(e));
     }
+    std::stable_sort(
+        curve_.events.begin() + first_new, curve_.events.end(),
+        [](const ForcedEvent& x, const ForcedEvent& y) { return x.arclength < y.arclength; });
   }
 
   void run(const Node& first) {
-    std::vector<Node> nodes{first};
+    Node last = first;
     double h = o_.step;
     std::string last_failure;
     const double pmin = o_.parameter_min, pmax = o_.parameter_max;
     while (static_cast<int>(curve_.points.size()) < o_.max_points) {
-      const Node& k = nodes.back();
-      const ForcedPoint& pk = curve_.points.back();
+      const Node k = last;
+      const double pk = curve_.points.back().parameter, sk = curve_.points.back().arclength;
       bool on_bound = false;
       try {
         auto [pt, node] = at(k, h, k.y + h * k.tangent);
@@ -416,17 +430,17 @@ class Continuation {
           // Land on the bound: the corrector with the border row p = bound,
           // from the chord's crossing of it.
           const double bound = pt.parameter < pmin ? pmin : pmax;
-          const double theta = (bound - pk.parameter) / (pt.parameter - pk.parameter);
+          const double theta = (bound - pk) / (pt.parameter - pk);
           Vector row = Vector::Zero(pb_.size());
           row(pb_.p_index()) = 1;
           std::tie(pt, node) =
-              solve(k.y + theta * (node.y - k.y), row, pb_.scaled_parameter(bound), k.tangent);
+              solve(k, k.y + theta * (node.y - k.y), row, pb_.scaled_parameter(bound));
           on_bound = true;
         }
-        pt.arclength = pk.arclength + (node.y - k.y).norm();
+        pt.arclength = sk + (node.y - k.y).norm();
         curve_.points.push_back(std::move(pt));
-        nodes.push_back(node);
-        events(static_cast<Index>(curve_.points.size()) - 2, nodes[nodes.size() - 2], nodes.back());
+        last = node;
+        events(static_cast<Index>(curve_.points.size()) - 2, k, last);
         if (curve_.points.back().corrector_iterations <= o_.easy_iterations)
           h = std::min(h * o_.growth, o_.max_step);
       } catch (const NumericalError& err) {
@@ -435,7 +449,7 @@ class Continuation {
         if (h < o_.min_step) {
           curve_.stop = ForcedStop::step_too_small;
           curve_.stop_reason = "stopped at " + std::string(parameter_name(o_.parameter)) + " = " +
-                               number(pk.parameter) + " (point " +
+                               number(pk) + " (point " +
                                std::to_string(curve_.points.size() - 1) +
                                "): the corrector failed with the step halved below min_step = " +
                                number(o_.min_step) + "; last failure: " + last_failure;
@@ -475,8 +489,9 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
 
   ForcedCurve curve;
   const double omega0 = load.omega;
-  curve.length = o.length > 0 ? o.length
-                              : std::max({first.u0.norm(), first.v0.norm() / omega0, periodic_tiny});
+  curve.length = o.length > 0
+                     ? o.length
+                     : std::max({first.u0.norm(), first.v0.norm() / omega0, periodic_tiny});
   curve.parameter_scale = o.parameter_scale > 0 ? o.parameter_scale : std::abs(p0);
   const ScaledProblem problem(field, damping, load, o, curve.length, curve.length * omega0,
                               curve.parameter_scale);

@@ -78,8 +78,8 @@ struct ForcedPoint {
   double omega = 0;        ///< forcing frequency at this point
   double scale = 1;        ///< amplitude factor at this point
   double arclength = 0;    ///< scaled arclength from the first point
-  /// d p / d s of the unit tangent (scaled), oriented along the curve: its
-  /// sign changes at a fold.
+  /// d p / d s of the unit tangent (scaled), oriented along the curve (away
+  /// from the previous point): its sign changes at a fold.
   double tangent_parameter = 0;
   PeriodicOrbit orbit;     ///< analysed: multipliers, stability, switches, energies
   int switches = 0;        ///< contact switches per period
@@ -98,10 +98,10 @@ struct ForcedEvent {
   /// Between points[point] and points[point + 1] of the curve.
   Index point = 0;
   double parameter = 0, arclength = 0;
-  /// true: bisection on the arclength to event_tolerance (orbit is the
-  /// corrected point just past the event); false: interpolation between the
-  /// bracketing points (linear in the fold's tangent_parameter, else the
-  /// middle of the bracket; orbit is that of points[point + 1]).
+  /// true: bisection on the arclength to event_tolerance; false:
+  /// interpolation in the bracket (linear in the fold's tangent_parameter
+  /// between the two points, else the middle of the bracket). `orbit` is the
+  /// corrected point nearest past the event (points[point + 1] if none).
   bool bisected = false;
   PeriodicOrbit orbit;
   /// The critical multiplier at `orbit`: nearest +1 (fold), nearest -1 among
