@@ -15,6 +15,13 @@ namespace {
 
 constexpr int kAmplitudeSamples = 512;
 
+std::string number(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
 // The harmonics of one list (Fc or Fs) in internal coordinates, checked:
 // size, finite, zero on the normal component of every contact node. A
 // rotated contact node rounds (ContactProblem::exact_round_trip): a load
@@ -33,7 +40,7 @@ std::vector<Vector> internal_harmonics(const ContactProblem& problem,
       const Index c = problem.contact_index()[j];
       if (std::abs(x(c)) > round_off)
         throw InputError(which + ": non-zero on the normal component of contact node " +
-                         std::to_string(j) + " (" + std::to_string(x(c)) +
+                         std::to_string(j) + " (" + number(x(c)) +
                          "); the load harmonics must vanish on the contact dofs (a time-varying "
                          "load there moves the nodal boundary relation, which the exact flow "
                          "does not model yet, method.md §9)");
@@ -47,15 +54,15 @@ std::vector<Vector> internal_harmonics(const ContactProblem& problem,
 void check_options(const ForcedOrbitOptions& o) {
   if (!(o.omega > 0) || !std::isfinite(o.omega))
     throw InputError("omega: expected a finite excitation frequency > 0, got " +
-                     std::to_string(o.omega));
+                     number(o.omega));
   if (o.subharmonic < 1)
     throw InputError("subharmonic: expected m >= 1 (period 2 pi m / omega), got " +
                      std::to_string(o.subharmonic));
   if (!(o.rayleigh_mass >= 0) || !std::isfinite(o.rayleigh_mass))
-    throw InputError("rayleighM: " + std::to_string(o.rayleigh_mass) +
+    throw InputError("rayleighM: " + number(o.rayleigh_mass) +
                      ", expected a finite Rayleigh coefficient >= 0");
   if (!(o.rayleigh_stiffness >= 0) || !std::isfinite(o.rayleigh_stiffness))
-    throw InputError("rayleighK: " + std::to_string(o.rayleigh_stiffness) +
+    throw InputError("rayleighK: " + number(o.rayleigh_stiffness) +
                      ", expected a finite Rayleigh coefficient >= 0");
   if (o.transient_periods < 0)
     throw InputError("transient: expected a number of periods >= 0, got " +
@@ -208,17 +215,17 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
   const char* what = frequency ? "omega" : "the amplitude factor";
   if (!std::isfinite(r.to) || r.to == start || (frequency && !(r.to > 0)))
     throw InputError("to: expected a finite end of the " + r.parameter + " range, other than the "
-                     "start (" + std::string(what) + " = " + std::to_string(start) + ")" +
-                     (frequency ? " and > 0" : "") + ", got " + std::to_string(r.to));
+                     "start (" + std::string(what) + " = " + number(start) + ")" +
+                     (frequency ? " and > 0" : "") + ", got " + number(r.to));
   const double from = std::isnan(r.from) ? start : r.from;
   if (!std::isfinite(from) || (frequency && !(from > 0)) ||
       (from - start) * (r.to - start) > 0)
     throw InputError("from: expected the other end of the " + r.parameter + " range, the start (" +
-                     std::string(what) + " = " + std::to_string(start) +
-                     ") between from and to, got " + std::to_string(from));
+                     std::string(what) + " = " + number(start) +
+                     ") between from and to, got " + number(from));
   if (!(r.step > 0) || !(r.max_step >= r.step) || !std::isfinite(r.max_step))
     throw InputError("step, maxStep: expected 0 < step <= maxStep < inf, got " +
-                     std::to_string(r.step) + ", " + std::to_string(r.max_step));
+                     number(r.step) + ", " + number(r.max_step));
   if (r.max_points < 1)
     throw InputError("points: expected >= 1, got " + std::to_string(r.max_points));
   c.parameter_min = std::min(from, r.to), c.parameter_max = std::max(from, r.to);
