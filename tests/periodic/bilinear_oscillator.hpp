@@ -13,6 +13,7 @@
 #include "damping.hpp"
 #include "harmonic_load.hpp"
 #include "oscillators.hpp"
+#include "rk4.hpp"
 
 namespace nbm_test {
 
@@ -44,15 +45,8 @@ struct Bilinear {
   /// Classical RK4 over `periods` forcing periods from t = 0, `steps` per
   /// period (the field is only Lipschitz at u = g: the kink costs order).
   Eigen::Vector2d integrate(Eigen::Vector2d x, int periods, int steps = 40000) const {
-    const double T = 2 * M_PI / w, h = T / steps;
-    for (int p = 0; p < periods; ++p)
-      for (int s = 0; s < steps; ++s) {
-        const double t = p * T + s * h;
-        const auto k1 = field(t, x), k2 = field(t + h / 2, x + h / 2 * k1),
-                   k3 = field(t + h / 2, x + h / 2 * k2), k4 = field(t + h, x + h * k3);
-        x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
-      }
-    return x;
+    return rk4_periods([this](double t, const Eigen::Vector2d& y) { return field(t, y); }, x,
+                       2 * M_PI / w, periods, steps);
   }
   /// Steady state at t = 0 mod T from x: periods integrated until a period changes
   /// the state by less than 1e-13.

@@ -5,11 +5,14 @@
 // and the frequency response of the full model.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <complex>
 #include <vector>
 
 #include "exact_flow.hpp"
 #include "reduced_field.hpp"
+#include "rk4.hpp"
 
 namespace nbm_test {
 
@@ -46,6 +49,24 @@ struct ForcedChain {
   Matrix reduced_K() const {
     const Matrix k = K();
     return k.topLeftCorner(n, n) - k.topRightCorner(n, 1) * k.bottomLeftCorner(1, n) / k(n, n);
+  }
+  /// Brute-force reference with the gap in reach, by RK4 (rk4.hpp): the
+  /// massless contact dof follows the last mass while open and stops at the
+  /// gap, so the contact adds the bilinear force kc [u_{n-1} - gap]_+ to the
+  /// open model, M u'' + a_M M u' + K_r u = Fc cos(w t) (interior dofs).
+  /// x = (u, v) at t = 0, over `periods` periods 2 pi / w.
+  Vector integrate(double a_M, const Vector& Fc, double w, const Vector& x, int periods,
+                   int steps = 40000) const {
+    const Matrix Mr = M().topLeftCorner(n, n), Minv = Mr.inverse(), Kr = reduced_K();
+    const Matrix Cr = a_M * Mr;
+    auto field = [&](double t, const Vector& y) {
+      Vector force = Fc * std::cos(w * t) - Kr * y.head(n) - Cr * y.tail(n);
+      force(n - 1) -= kc * std::max(y(n - 1) - gap, 0.0);
+      Vector dy(2 * n);
+      dy << y.tail(n), Minv * force;
+      return dy;
+    };
+    return rk4_periods(field, x, 2 * M_PI / w, periods, steps);
   }
 };
 

@@ -50,6 +50,7 @@ class ScaledProblem {
   Vector v(const Vector& y) const { return y.segment(n_, n_) * V_; }
   double p(const Vector& y) const { return y(p_index()) * P_; }
   double scaled_parameter(double p) const { return p / P_; }
+  double parameter_scale() const { return P_; }
   /// A state perturbation dx = (du, dv) in the scaled unknowns.
   Vector scaled_state(const Vector& dx) const {
     Vector y = Vector::Zero(size());
@@ -295,6 +296,8 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
     throw InputError(c + "easy_iterations must be >= 0, got " + std::to_string(o.easy_iterations));
   if (!(o.max_jump >= 1) || !std::isfinite(o.max_jump))
     throw InputError(c + "max_jump must be finite and >= 1, got " + number(o.max_jump));
+  if (!(o.max_turn > 0) || !(o.max_turn <= M_PI))
+    throw InputError(c + "max_turn must be in (0, pi], got " + number(o.max_turn));
   if (o.max_points < 1)
     throw InputError(c + "max_points must be >= 1, got " + std::to_string(o.max_points));
   if (!(o.length >= 0) || !std::isfinite(o.length))
@@ -385,14 +388,21 @@ class Continuation {
         e.parameter = past.parameter;
         e.arclength = pa.arclength + hi;
       } else {
-        // Interpolation on the chord of the current bracket: linear in the
-        // tangent's parameter component for a fold, the middle otherwise.
-        double theta = 0.5;
-        if (kind == ForcedEventKind::fold && lo == 0 && hi == sigma_end)
-          theta = pa.tangent_parameter / (pa.tangent_parameter - pb.tangent_parameter);
-        const double s = lo + theta * (hi - lo);
-        e.parameter = pa.parameter + (s / sigma_end) * (pb.parameter - pa.parameter);
-        e.arclength = pa.arclength + s;
+        if (kind == ForcedEventKind::fold && lo == 0 && hi == sigma_end) {
+          // The vertex of the parabola p(sigma) whose slope is linear
+          // between the two points' dp/dsigma (scaled): the chord would
+          // cut the turning parameter short.
+          const double slope_a = a.tangent(pb_.p_index()),
+                       slope_b = b.tangent(pb_.p_index()) / b.tangent.dot(a.tangent);
+          const double s = sigma_end * slope_a / (slope_a - slope_b);
+          e.parameter = pa.parameter + pb_.parameter_scale() * slope_a * s / 2;
+          e.arclength = pa.arclength + s;
+        } else {
+          // The middle of the bracket, on the chord between the two points.
+          const double s = 0.5 * (lo + hi);
+          e.parameter = pa.parameter + (s / sigma_end) * (pb.parameter - pa.parameter);
+          e.arclength = pa.arclength + s;
+        }
       }
       e.orbit = past.orbit;
       if (kind != ForcedEventKind::grazing) e.multiplier = critical_multiplier(kind, e.orbit);
@@ -426,6 +436,10 @@ class Continuation {
         if (jump > o_.max_jump * h)
           throw NumericalError("the corrected point jumped " + number(jump / h) +
                                " times the step (max_jump " + number(o_.max_jump) + ")");
+        const double turn = std::acos(std::clamp(k.tangent.dot(node.tangent), -1.0, 1.0));
+        if (turn > o_.max_turn)
+          throw NumericalError("the tangent turned by " + number(turn) +
+                               " rad in one step (max_turn " + number(o_.max_turn) + ")");
         if (pt.parameter < pmin || pt.parameter > pmax) {
           // Land on the bound: the corrector with the border row p = bound,
           // from the chord's crossing of it.

@@ -52,6 +52,11 @@ struct ForcedContinuationOptions {
   /// (scaled) is rejected like a failed corrector: it jumped to another
   /// branch. Must be >= 1 (the point lies on the hyperplane at `step`).
   double max_jump = 2;
+  /// Largest angle (radians) between the tangents of consecutive points; a
+  /// sharper turn is rejected like a failed corrector. On a C^1 curve it
+  /// vanishes with the step; a corrector that converged back onto the part
+  /// of the curve already followed turns by about pi.
+  double max_turn = 0.5;
   int max_points = 200;      ///< including the first point
   /// Scales: L of the displacements (0: from the first orbit, the larger of
   /// |u0| and |v0| / omega_0) and P of the parameter (0: |p_0|).
@@ -99,8 +104,9 @@ struct ForcedEvent {
   Index point = 0;
   double parameter = 0, arclength = 0;
   /// true: bisection on the arclength to event_tolerance; false:
-  /// interpolation in the bracket (linear in the fold's tangent_parameter
-  /// between the two points, else the middle of the bracket). `orbit` is the
+  /// interpolation in the bracket (for a fold between the two points, the
+  /// vertex of the parabola whose slope dp/ds is linear between their
+  /// tangents; else the middle of the bracket, on the chord). `orbit` is the
   /// corrected point nearest past the event (points[point + 1] if none).
   bool bisected = false;
   PeriodicOrbit orbit;
