@@ -22,11 +22,52 @@
 //   int st = nbmOrbitStable(S);
 //   nbmOrbitHarmonics(S, C);          // real[int,int] ndof x (2H+1) (harmonic balance)
 //   nbmOrbitSummary(S, "file.txt");   // the summary, printed and written
+//
+// Forced orbits (method.md §9; core: user_forced_orbit.hpp), under the load
+// F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t):
+//   real T = nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v,  // guess (u, v) at t = 0
+//              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K; default:
+//                                              // the NBM object's coefficients
+//              subharmonic = 1,                // period 2 pi m / omega
+//              probe = dof,                    // amplitude of this dof (default:
+//                                              // the dof of largest amplitude)
+//              transient = 0,                  // periods run from the guess first
+//              iterations = 50);
+//   // Fc, Fs: real[int,int] ndof x H (column k-1: harmonic k; either may have
+//   // fewer columns, even 0) or real[int] of size ndof (one harmonic, or size 0:
+//   // none). They must vanish on the contact dofs. u, v hold the orbit's state
+//   // at t = 0 (and at every t = k T: no phase condition, time is the
+//   // excitation's); the period T = 2 pi m / omega is returned. The nbmOrbit*
+//   // functions above read the last forced orbit too (no trivial multiplier:
+//   // stable iff all |mu| < 1); nbmContinueOrbit refuses it. Full interior
+//   // only (no modes=). With mass = "redistributed", aM multiplies the
+//   // redistributed mass, as in the time steppers.
+//   int n = nbmForcedResponse(S, F0, Fc, Fs, omega, u, v,  // the forced orbit as above,
+//              (the named arguments of nbmForcedOrbit),   // then its response curve
+//              parameter = "omega",            // or "amplitude": a factor on Fc, Fs (1 at start)
+//              to = pEnd, from = pOther,       // heads towards `to`, stays in [from, to]
+//                                              // (from: default the start)
+//              step = 0.02, maxStep = 0.2,     // arclength steps (scaled unknowns)
+//              points = 200, locate = true,    // events by bisection (else interpolated)
+//              file = "curve.csv",             // a row per point (user_forced_orbit.hpp)
+//              curve = C, events = E);         // real[int,int]: a row per point: omega,
+//                                              // scale, arclength, amplitude, probe min, max,
+//                                              // energy, largest energy, contact time,
+//                                              // switches, min gap, max |mu|, stable,
+//                                              // periodicity; a row per event: kind (0 fold,
+//                                              // 1 period doubling, 2 Neimark-Sacker,
+//                                              // 3 grazing), parameter, point past it, mu
+//                                              // (re, im), arclength
+//   // Pseudo-arclength continuation (core: forced_continuation.hpp): returns
+//   // the number of points; u, v and the last orbit are the last point's.
+//   real a = nbmOrbitAmplitude(S);    // (max - min) / 2 of u[probe] over a period
+//   nbmOrbitProbe(S, r);              // probe dof, min, max, largest total energy
 #include <cmath>
 #include <fstream>
 #include <iostream>
 
 #include "binding.hpp"
+#include "user_forced_orbit.hpp"
 #include "user_orbit.hpp"
 
 namespace nbm_binding {
@@ -115,6 +156,225 @@ class PeriodicOrbitOp : public OneOperator {
   }
 };
 
+// The harmonics of one load list (Fc or Fs): the columns of a
+// real[int,int], or one real[int] (size 0: none).
+std::vector<std::vector<double>> harmonics_of(KNM<double>* A, const char* fn, const char* name) {
+  if (!A) fail(std::string(fn) + ": array " + name + " is missing");
+  std::vector<std::vector<double>> list(A->M(), std::vector<double>(A->N()));
+  for (long k = 0; k < A->M(); ++k)
+    for (long i = 0; i < A->N(); ++i) list[k][i] = (*A)(i, k);
+  return list;
+}
+std::vector<std::vector<double>> harmonics_of(KN<double>* x, const char* fn, const char* name) {
+  std::vector<double> one = vector_of<double>(x, fn, name);
+  if (one.empty()) return {};
+  return {std::move(one)};
+}
+
+// The options of a forced orbit from the first six named arguments
+// (rayleighM, rayleighK, subharmonic, probe, transient, iterations) of
+// nbmForcedOrbit and nbmForcedResponse; the damping defaults to the NBM
+// object's Rayleigh coefficients.
+nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expression* nargs,
+                                       Stack s, double omega, const char* fn) {
+  const nbm::SolverOptions& so = solver.options();
+  nbm::ForcedOrbitOptions o;
+  o.omega = omega;
+  o.rayleigh_mass = nargs[0] ? GetAny<double>((*nargs[0])(s)) : so.rayleigh_mass;
+  o.rayleigh_stiffness = nargs[1] ? GetAny<double>((*nargs[1])(s)) : so.rayleigh_stiffness;
+  if (so.damping.rows > 0)
+    fail(std::string(fn) + ": the NBM object has an assembled damping matrix, which forced "
+         "orbits do not support yet (its reduced form does not decouple on the modes, "
+         "method.md §9); build it with rayleighM=, rayleighK= only");
+  if (nargs[2]) o.subharmonic = static_cast<int>(GetAny<long>((*nargs[2])(s)));
+  if (nargs[3]) o.probe = GetAny<long>((*nargs[3])(s));
+  if (nargs[4]) o.transient_periods = static_cast<int>(GetAny<long>((*nargs[4])(s)));
+  if (nargs[5]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[5])(s)));
+  return o;
+}
+
+// nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v, ...): H is KNM<double>* (one
+// column per harmonic) or KN<double>* (one harmonic).
+template <class H>
+class ForcedOrbit : public E_F0mps {
+ public:
+  static const int n_name_param = 6;
+  static basicAC_F0::name_and_type name_param[];
+  Expression nargs[n_name_param];
+  Expression handle, F0, Fc, Fs, omega, u, v;
+
+  ForcedOrbit(const basicAC_F0& args, const Expression (&e)[7])
+      : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+  }
+
+  AnyType operator()(Stack s) const override {
+    const char* fn = "nbmForcedOrbit";
+    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
+    nbm::Solver& solver = solver_of(h, fn);
+    KN<double>* U = GetAny<KN<double>*>((*u)(s));
+    KN<double>* V = GetAny<KN<double>*>((*v)(s));
+    if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
+    const nbm::ForcedOrbitOptions o =
+        forced_options(solver, nargs, s, GetAny<double>((*omega)(s)), fn);
+    const std::vector<double> uu = vector_of<double>(U, fn, "u");
+    const std::vector<double> vv = vector_of<double>(V, fn, "v");
+    const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
+    const auto cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
+    const auto sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    auto report = guarded(fn, [&] {
+      return nbm::forced_orbit(solver.problem(), FF, cosines, sines, uu, vv, o);
+    });
+    return SetAny<double>(keep(h, std::move(report), U, V));
+  }
+  operator aType() const override { return atype<double>(); }
+};
+
+template <class H>
+basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
+    {"rayleighM", &typeid(double)}, {"rayleighK", &typeid(double)},
+    {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
+    {"transient", &typeid(long)},   {"iterations", &typeid(long)},
+};
+
+template <class H>
+class ForcedOrbitOp : public OneOperator {
+ public:
+  ForcedOrbitOp()
+      : OneOperator(atype<double>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
+                    atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[7];
+    for (int k = 0; k < 7; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new ForcedOrbit<H>(args, e);
+  }
+};
+
+// nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments
+// of nbmForcedOrbit, then those of the continuation.
+int event_code(const std::string& kind) {
+  if (kind == "fold") return 0;
+  if (kind == "period doubling") return 1;
+  if (kind == "Neimark-Sacker") return 2;
+  return 3;  // grazing
+}
+
+template <class H>
+class ForcedResponse : public E_F0mps {
+ public:
+  static const int n_name_param = 16;
+  static basicAC_F0::name_and_type name_param[];
+  Expression nargs[n_name_param];
+  Expression handle, F0, Fc, Fs, omega, u, v;
+
+  ForcedResponse(const basicAC_F0& args, const Expression (&e)[7])
+      : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+  }
+
+  AnyType operator()(Stack s) const override {
+    const char* fn = "nbmForcedResponse";
+    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
+    nbm::Solver& solver = solver_of(h, fn);
+    KN<double>* U = GetAny<KN<double>*>((*u)(s));
+    KN<double>* V = GetAny<KN<double>*>((*v)(s));
+    if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
+    const nbm::ForcedOrbitOptions o =
+        forced_options(solver, nargs, s, GetAny<double>((*omega)(s)), fn);
+    nbm::ForcedResponseOptions r;
+    if (nargs[6]) r.parameter = *GetAny<string*>((*nargs[6])(s));
+    if (nargs[7]) r.from = GetAny<double>((*nargs[7])(s));
+    if (!nargs[8]) fail(std::string(fn) + ": to: the end of the parameter range is required");
+    r.to = GetAny<double>((*nargs[8])(s));
+    if (nargs[9]) r.step = GetAny<double>((*nargs[9])(s));
+    r.max_step = nargs[10] ? GetAny<double>((*nargs[10])(s)) : std::max(r.max_step, r.step);
+    if (nargs[11]) r.max_points = static_cast<int>(GetAny<long>((*nargs[11])(s)));
+    if (nargs[12]) r.locate_events = GetAny<bool>((*nargs[12])(s));
+    const std::string file = nargs[13] ? *GetAny<string*>((*nargs[13])(s)) : std::string();
+    const std::vector<double> uu = vector_of<double>(U, fn, "u");
+    const std::vector<double> vv = vector_of<double>(V, fn, "v");
+    const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
+    const auto cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
+    const auto sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    nbm::ForcedResponse response = guarded(fn, [&] {
+      return nbm::forced_response(solver.problem(), FF, cosines, sines, uu, vv, o, r);
+    });
+    if (!file.empty()) guarded(fn, [&] { nbm::write_forced_response(response, file); });
+    if (nargs[14]) {  // curve = C: a row per point
+      KNM<double>* C = GetAny<KNM<double>*>((*nargs[14])(s));
+      C->resize(response.points.size(), 14);
+      for (long k = 0; k < static_cast<long>(response.points.size()); ++k) {
+        const nbm::ForcedResponsePoint& p = response.points[k];
+        const double row[14] = {p.omega, p.scale, p.arclength, p.amplitude, p.probe_min,
+                                p.probe_max, p.energy, p.energy_max, p.contact_time,
+                                static_cast<double>(p.switches), p.min_gap,
+                                p.moduli.empty() ? 0.0 : p.moduli[0],
+                                p.stable ? 1.0 : 0.0, p.periodicity_residual};
+        for (long j = 0; j < 14; ++j) (*C)(k, j) = row[j];
+      }
+    }
+    if (nargs[15]) {  // events = E: a row per event
+      KNM<double>* E = GetAny<KNM<double>*>((*nargs[15])(s));
+      E->resize(response.events.size(), 6);
+      for (long k = 0; k < static_cast<long>(response.events.size()); ++k) {
+        const nbm::ForcedResponseEvent& e = response.events[k];
+        const double row[6] = {static_cast<double>(event_code(e.kind)), e.parameter,
+                               static_cast<double>(e.point), e.multiplier_re, e.multiplier_im,
+                               e.arclength};
+        for (long j = 0; j < 6; ++j) (*E)(k, j) = row[j];
+      }
+    }
+    std::cout << fn << ": " << response.points.size() << " points, " << response.events.size()
+              << " events; " << response.stop_reason << std::endl;
+    for (const auto& e : response.events) std::cout << "  " << e.description << std::endl;
+    const long n = static_cast<long>(response.points.size());
+    keep(h, std::move(response.last), U, V);
+    return SetAny<long>(n);
+  }
+  operator aType() const override { return atype<long>(); }
+};
+
+template <class H>
+basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
+    {"rayleighM", &typeid(double)}, {"rayleighK", &typeid(double)},
+    {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
+    {"transient", &typeid(long)},   {"iterations", &typeid(long)},
+    {"parameter", &typeid(string*)}, {"from", &typeid(double)},
+    {"to", &typeid(double)},        {"step", &typeid(double)},
+    {"maxStep", &typeid(double)},   {"points", &typeid(long)},
+    {"locate", &typeid(bool)},      {"file", &typeid(string*)},
+    {"curve", &typeid(KNM<double>*)}, {"events", &typeid(KNM<double>*)},
+};
+
+template <class H>
+class ForcedResponseOp : public OneOperator {
+ public:
+  ForcedResponseOp()
+      : OneOperator(atype<long>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
+                    atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[7];
+    for (int k = 0; k < 7; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new ForcedResponse<H>(args, e);
+  }
+};
+
+const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {
+  const nbm::OrbitReport& o = orbit_of(h, function);
+  if (o.omega == 0)
+    fail(std::string(function) + ": the last orbit is not a forced orbit (nbmForcedOrbit)");
+  return o;
+}
+double orbit_amplitude(NbmHandle* const& h) {
+  return forced_of(h, "nbmOrbitAmplitude").amplitude;
+}
+long orbit_probe(NbmHandle* const& h, KN<double>* const& r) {
+  const nbm::OrbitReport& o = forced_of(h, "nbmOrbitProbe");
+  assign(r, std::vector<double>{static_cast<double>(o.probe), o.probe_min, o.probe_max,
+                                o.energy_max});
+  return o.probe;
+}
+
 double continue_orbit(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
                       const double& step) {
   const char* fn = "nbmContinueOrbit";
@@ -196,6 +456,12 @@ void load_orbit_functions() {
   using H = NbmHandle*;
   using R = KN<double>*;
   Global.Add("nbmPeriodicOrbit", "(", new PeriodicOrbitOp);
+  Global.Add("nbmForcedOrbit", "(", new ForcedOrbitOp<KNM<double>*>);
+  Global.Add("nbmForcedOrbit", "(", new ForcedOrbitOp<KN<double>*>);
+  Global.Add("nbmForcedResponse", "(", new ForcedResponseOp<KNM<double>*>);
+  Global.Add("nbmForcedResponse", "(", new ForcedResponseOp<KN<double>*>);
+  Global.Add("nbmOrbitAmplitude", "(", new OneOperator1_<double, H>(orbit_amplitude));
+  Global.Add("nbmOrbitProbe", "(", new OneOperator2_<long, H, R>(orbit_probe));
   Global.Add("nbmContinueOrbit", "(", new OneOperator4_<double, H, R, R, double>(continue_orbit));
   Global.Add("nbmOrbitState", "(", new OneOperator4_<long, H, double, R, R>(orbit_state));
   Global.Add("nbmOrbitMultipliers", "(", new OneOperator3_<long, H, R, R>(orbit_multipliers));

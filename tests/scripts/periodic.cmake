@@ -96,3 +96,64 @@ nbm_bad_backbone_case(F-size [[nbmBackbone: F: size 5, expected [0-9]+]])
 nbm_bad_backbone_case(gap [[nbmBackbone: gaps: contact 0 has gap 0. a backbone from grazing needs every gap > 0]])
 nbm_bad_backbone_case(load [[nbmBackbone: F: the static state under the load closes contact]])
 nbm_bad_backbone_case(file [[nbmBackbone: cannot write /nonexistent-folder/backbone.csv]])
+
+# Forced orbits (nbmForcedOrbit): valid calls and one broken input per case.
+nbm_bad_valid(orbit-valid-forced ${NBM_ORBIT_CASES} -case valid-forced)
+nbm_bad_orbit_case(forced-F0-size [[nbmForcedOrbit: F0: size 5, expected]])
+nbm_bad_orbit_case(forced-Fc-rows [[nbmForcedOrbit: Fc \(harmonic 1\): size 5, expected]])
+nbm_bad_orbit_case(forced-Fs-size [[nbmForcedOrbit: Fs \(harmonic 1\): size 5, expected]])
+nbm_bad_orbit_case(forced-Fc-nan [[nbmForcedOrbit: Fc \(harmonic 2\): non-finite entries]])
+nbm_bad_orbit_case(forced-contact-load [[nbmForcedOrbit: Fc \(harmonic 1\): non-zero on the normal component of contact node 0]])
+nbm_bad_orbit_case(forced-no-harmonic [[nbmForcedOrbit: Fc, Fs: no load harmonic]])
+nbm_bad_orbit_case(forced-u-size [[nbmForcedOrbit: u: size 5, expected]])
+nbm_bad_orbit_case(forced-omega-zero [[nbmForcedOrbit: omega: expected a finite excitation frequency > 0]])
+nbm_bad_orbit_case(forced-omega-negative [[nbmForcedOrbit: omega: expected a finite excitation frequency > 0]])
+nbm_bad_orbit_case(forced-omega-nan [[nbmForcedOrbit: omega: expected a finite excitation frequency > 0]])
+nbm_bad_orbit_case(forced-subharmonic [[nbmForcedOrbit: subharmonic: expected m >= 1]])
+nbm_bad_orbit_case(forced-rayleighM [[nbmForcedOrbit: rayleighM: -0.5.*expected a finite Rayleigh coefficient >= 0]])
+nbm_bad_orbit_case(forced-rayleighK [[nbmForcedOrbit: rayleighK: .*nan.*expected a finite Rayleigh coefficient >= 0]])
+nbm_bad_orbit_case(forced-probe-fixed [[nbmForcedOrbit: probe: dof 0 is fixed]])
+nbm_bad_orbit_case(forced-probe-range [[nbmForcedOrbit: probe: dof [0-9]+ out of range]])
+nbm_bad_orbit_case(forced-transient [[nbmForcedOrbit: transient: expected a number of periods >= 0]])
+nbm_bad_orbit_case(forced-iterations [[nbmForcedOrbit: iterations: expected >= 1]])
+nbm_bad_orbit_case(forced-same-array [[nbmForcedOrbit: u and v must be different arrays]])
+nbm_bad_orbit_case(forced-no-convergence [[nbmForcedOrbit: forced orbit: no convergence in 1 Newton iteration]])
+nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: the NBM object has an assembled damping matrix]])
+nbm_bad_orbit_case(forced-amplitude-autonomous [[nbmOrbitAmplitude: the last orbit is not a forced orbit]])
+nbm_bad_orbit_case(forced-continue [[nbmContinueOrbit: continuation follows autonomous orbits]])
+nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the NBM object was not constructed]])
+nbm_bad_valid(orbit-valid-response ${NBM_ORBIT_CASES} -case valid-response)
+nbm_bad_orbit_case(response-parameter [[nbmForcedResponse: parameter: "force".*expected "omega" or "amplitude"]])
+nbm_bad_orbit_case(response-to [[nbmForcedResponse: to: the end of the parameter range is required]])
+nbm_bad_orbit_case(response-to-start [[nbmForcedResponse: to: expected a finite end of the omega range, other than the start]])
+nbm_bad_orbit_case(response-from [[nbmForcedResponse: from: expected the other end of the omega range]])
+nbm_bad_orbit_case(response-step [[nbmForcedResponse: step, maxStep: expected 0 < step <= maxStep]])
+nbm_bad_orbit_case(response-points [[nbmForcedResponse: points: expected >= 1]])
+nbm_bad_orbit_case(response-omega [[nbmForcedResponse: omega: expected a finite excitation frequency > 0]])
+nbm_bad_orbit_case(response-contact-load [[nbmForcedResponse: Fc \(harmonic 1\): non-zero on the normal component of contact node 0]])
+nbm_bad_orbit_case(response-file [[nbmForcedResponse: file: cannot write /nonexistent-folder/curve.csv]])
+
+# The forced plate (edp/forced-plate.edp). Linear limit: with the wall out of
+# reach every orbit of the sweep (paper NBM, consistent mass) is the direct
+# frequency response of the damped model solved in the script, to 1e-8.
+set(FORCED_PLATE ${PROJECT_SOURCE_DIR}/edp/forced-plate.edp)
+# The continuation through the linear resonance: every point's amplitude is
+# the direct response's (to the 512-sample resolution of the extremes).
+nbm_summary_test(forced-plate-linear
+  "linearDifference<=1e-8 periodicity<=1e-10 contact<=0 unstable<=0 failed<=0 arcLinearDifference<=1e-4 arcContact<=0 arcUnstable<=0 folds<=0 arcEnd>=1.399"
+  ${FORCED_PLATE} -out forced-linear -mass consistent -contactFree 1 -points 7 -down 0 -settle 0)
+# With the wall in reach: the sweep finds stable orbits with contact; the
+# damped Newmark stepper started 30% away from the stable contact orbit of
+# fastest decay (largest |multiplier| about 0.91, so the transient is below
+# 1e-5 after 120 periods) ends within 1e-3 of it at T/400, and closer at
+# T/800 (what remains is the stepper's own error).
+nbm_summary_test(forced-plate-settle
+  "settleStart>=0.29 settleDistance<=1e-3 settleDistanceFine<=5e-4 settleRatio<=0.8 contact>=1 stable>=1 periodicity<=1e-10 complementarity<=1e-12"
+  ${FORCED_PLATE} -out forced-settle -points 31 -down 0 -arclength 0)
+# The response curve by continuation in omega (nbmForcedResponse) against the
+# sweeps, which know nothing of it: the two folds it finds lie within one
+# sweep step (0.01) of where the sweeps jump (up: off the upper branch;
+# down: onto it); every point periodic to 1e-10; the curve reaches its end.
+nbm_summary_test(forced-plate-curve
+  "folds>=2 foldCheckUp<=0.011 foldCheckDown<=0.011 arcPeriodicity<=1e-10 arcEnd>=1.399 arcUnstable>=1 periodicity<=1e-10"
+  ${FORCED_PLATE} -out forced-curve -settle 0)

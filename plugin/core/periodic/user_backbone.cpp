@@ -7,17 +7,13 @@
 #include "backbone.hpp"
 #include "contact_problem.hpp"
 #include "errors.hpp"
+#include "orbit_model.hpp"
 
 namespace nbm {
 
 BackboneReport backbone(const ContactProblem& problem, const std::vector<double>& F, long mode,
                         const BackboneOptions& options) {
-  const Index N = problem.n_dofs();
-  if (static_cast<Index>(F.size()) != N)
-    throw InputError("F: size " + std::to_string(F.size()) + ", expected " + std::to_string(N) +
-                     " (the number of dofs)");
-  const Vector FF = Eigen::Map<const Vector>(F.data(), N);
-  if (!FF.allFinite()) throw InputError("F: non-finite entries");
+  const Vector FF = user_vector(F, problem.n_dofs(), "F");
   const Index interior = problem.size() - problem.n_contact();
   if (interior > periodic_max_dense_dofs)
     throw InputError("the model has " + std::to_string(interior) +

@@ -4,26 +4,13 @@
 #include <cmath>
 #include <sstream>
 
-#include "contact_problem.hpp"
 #include "errors.hpp"
 #include "harmonic_balance.hpp"
-#include "reduced_basis.hpp"
 #include "continuation.hpp"
-#include "shooting.hpp"
+#include "orbit_model.hpp"
 
 namespace nbm {
 namespace {
-
-Vector user_vector(const std::vector<double>& x, Index n, const char* name) {
-  if (static_cast<Index>(x.size()) != n)
-    throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
-                     std::to_string(n) + " (the number of dofs)");
-  Vector y = Eigen::Map<const Vector>(x.data(), n);
-  if (!y.allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-  return y;
-}
-
-std::vector<double> to_std(const Vector& x) { return {x.data(), x.data() + x.size()}; }
 
 ShootingOptions::Amplitude condition_of(const std::string& c) {
   if (c == "displacement") return ShootingOptions::Amplitude::displacement;
@@ -32,74 +19,61 @@ ShootingOptions::Amplitude condition_of(const std::string& c) {
   throw InputError("condition: \"" + c + "\"; expected \"displacement\", \"energy\" or \"period\"");
 }
 
-// Position in u_O of a user dof.
-Index interior_position(const ContactProblem& p, const ReducedField& field, long dof) {
+}  // namespace
+
+Vector user_vector(const std::vector<double>& x, Index n, const std::string& name) {
+  if (static_cast<Index>(x.size()) != n)
+    throw InputError(name + ": size " + std::to_string(x.size()) + ", expected " +
+                     std::to_string(n) + " (the number of dofs)");
+  Vector y = Eigen::Map<const Vector>(x.data(), n);
+  if (!y.allFinite()) throw InputError(name + ": non-finite entries");
+  return y;
+}
+
+std::vector<double> to_std(const Vector& x) { return {x.data(), x.data() + x.size()}; }
+
+Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
+                        const std::string& name) {
   if (dof < 0 || dof >= p.n_dofs())
-    throw InputError("probe: dof " + std::to_string(dof) + " out of range [0, " +
+    throw InputError(name + ": dof " + std::to_string(dof) + " out of range [0, " +
                      std::to_string(p.n_dofs()) + ")");
   const Index internal = p.internal_index(dof);
   const auto& in = field.interior();
   const auto it = std::lower_bound(in.begin(), in.end(), internal);
   if (internal < 0 || it == in.end() || *it != internal)
-    throw InputError("probe: dof " + std::to_string(dof) +
+    throw InputError(name + ": dof " + std::to_string(dof) +
                      " is fixed or the normal component of a contact node; choose an interior "
                      "dof");
   return it - in.begin();
 }
 
-}  // namespace
+OrbitModel::OrbitModel(const ContactProblem& p) : problem(p) {
+  std::vector<char> is_contact(p.size(), 0);
+  for (Index c : p.contact_index()) is_contact[c] = 1;
+  for (Index i = 0; i < p.size(); ++i)
+    if (!is_contact[i]) interior.push_back(i);
+}
 
-// The field an orbit lives on and the maps between its unknowns and the
-// user's vectors: the interior unknowns u_O, or the coordinates q of a
-// reduced basis (u_O = V q).
-struct OrbitModel {
-  const ContactProblem& problem;
-  Vector F;  ///< the load, internal coordinates
-  std::unique_ptr<ReducedField> full;
-  std::unique_ptr<ReducedBasis> basis;
-  int modes = 0;  ///< of the reduced basis; 0: none
-  std::vector<Index> interior;  ///< internal indices of the interior dofs
-  /// How the orbit was computed (continuation keeps it): shooting or not,
-  /// the field unknown of the phase condition, half-period shooting.
-  bool shooting = true;
-  ShootingOptions conditions;
+Vector OrbitModel::unknowns(const Vector& user) const {
+  const Vector x = problem.to_internal(user);
+  return basis ? basis->reduce(x(interior)) : full->restrict(x);
+}
 
-  explicit OrbitModel(const ContactProblem& p) : problem(p) {
-    std::vector<char> is_contact(p.size(), 0);
-    for (Index c : p.contact_index()) is_contact[c] = 1;
-    for (Index i = 0; i < p.size(); ++i)
-      if (!is_contact[i]) interior.push_back(i);
-  }
-  const ReducedField& field() const { return basis ? basis->field() : *full; }
-  /// Field unknowns of a user displacement (or velocity).
-  Vector unknowns(const Vector& user) const {
-    const Vector x = problem.to_internal(user);
-    return basis ? basis->reduce(x(interior)) : full->restrict(x);
-  }
-  /// Internal vector of interior values (contact dofs zero).
-  Vector internal(const Vector& interior_values) const {
-    Vector x = Vector::Zero(problem.size());
-    x(interior) = interior_values;
-    return x;
-  }
-  /// User vector of field unknowns: displacement (contact dofs from the
-  /// nodal boundary relation) or, with `v` given, the velocity.
-  Vector user(const Vector& u, const Vector* v = nullptr) const {
-    const ReducedField& f = field();
-    const Vector y = v ? f.expand_velocity(u, *v) : f.expand(u);
-    if (!basis) return problem.to_user(y);
-    const Index r = basis->size();
-    Vector x = internal(basis->expand(y.head(r)));
-    x(problem.contact_index()) = y.tail(problem.n_contact());
-    return problem.to_user(x);
-  }
-};
+Vector OrbitModel::internal(const Vector& interior_values) const {
+  Vector x = Vector::Zero(problem.size());
+  x(interior) = interior_values;
+  return x;
+}
 
-namespace {
-// The report of an orbit found on `model`; `method` opens its summary.
-OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
-                     OrbitReport report, const std::string& method);
-}  // namespace
+Vector OrbitModel::user(const Vector& u, const Vector* v) const {
+  const ReducedField& f = field();
+  const Vector y = v ? f.expand_velocity(u, *v) : f.expand(u);
+  if (!basis) return problem.to_user(y);
+  const Index r = basis->size();
+  Vector x = internal(basis->expand(y.head(r)));
+  x(problem.contact_index()) = y.tail(problem.n_contact());
+  return problem.to_user(x);
+}
 
 OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<double>& F,
                            const std::vector<double>& u, const std::vector<double>& v, double T,
@@ -141,7 +115,7 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   const Vector u0 = model->unknowns(uu), v0 = model->unknowns(vv);
   Index probe = 0;
   if (o.probe >= 0)
-    probe = interior_position(problem, field, o.probe);
+    probe = interior_position(problem, field, o.probe, "probe");
   else
     u0.cwiseAbs().maxCoeff(&probe);
 
@@ -186,7 +160,6 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   return describe(std::move(model), orbit, std::move(report), extra.str());
 }
 
-namespace {
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
                      OrbitReport report, const std::string& method) {
   const ReducedField& field = model->field();
@@ -234,7 +207,6 @@ OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbi
   report.model = std::move(model);
   return report;
 }
-}  // namespace
 
 OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last, double step) {
   if (!previous.model || !last.model) throw InputError("orbit: no periodic orbit");
@@ -242,6 +214,9 @@ OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last,
   const OrbitModel& p = *previous.model;
   if (!m.shooting || !p.shooting)
     throw InputError("continuation follows orbits computed by shooting, not by harmonic balance");
+  if (m.forced || p.forced)
+    throw InputError("continuation follows autonomous orbits (nbmPeriodicOrbit); a forced orbit "
+                     "is continued in its excitation frequency or amplitude instead");
   if (&p.problem != &m.problem || p.F.size() != m.F.size() || p.F != m.F ||
       p.modes != m.modes ||
       p.conditions.half_period != m.conditions.half_period)
@@ -284,7 +259,7 @@ void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,
   const Vector v0 = m.unknowns(user_vector(orbit.v0, N, "v0"));
   const Index n = field.size();
   const double end = times.empty() ? 0 : times.back();
-  const FlowResult r = ExactFlow(field).integrate(u0, v0, end, false, times);
+  const FlowResult r = m.flow().integrate(u0, v0, end, false, times);
   u.clear(), v.clear();
   for (Index k = 0; k < r.samples.cols(); ++k) {
     const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);

@@ -58,6 +58,14 @@ struct OrbitReport {
   /// model's reduced equations along the orbit (the reduction error), and
   /// the retained cutoff frequency times T / (2 pi).
   double reduction_residual = 0, cutoff_ratio = 0;
+  // Forced orbits only (user_forced_orbit.hpp):
+  double omega = 0;     ///< excitation frequency; 0 for an autonomous orbit
+  int subharmonic = 0;  ///< m: period = 2 pi m / omega
+  long probe = -1;      ///< user dof of the amplitude below
+  /// Extremes of u[probe] over one period (the exact flow sampled 512 times
+  /// and at every switch), and amplitude = (max - min) / 2.
+  double probe_min = 0, probe_max = 0, amplitude = 0;
+  double energy_max = 0;  ///< largest total energy at those samples
   std::string summary;
   std::shared_ptr<const OrbitModel> model;  ///< for orbit_states
 };

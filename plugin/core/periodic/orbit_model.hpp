@@ -1,0 +1,66 @@
+// The pieces the user-level orbit front ends share (user_orbit.cpp,
+// user_forced_orbit.cpp): the field an orbit lives on with the maps between
+// its unknowns and the user's vectors, the checks of user vectors and dofs,
+// and the report of a computed orbit. Internal to the core (Eigen types);
+// the front ends' public headers stay free of them.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "contact_problem.hpp"
+#include "exact_flow.hpp"
+#include "periodic_orbit.hpp"
+#include "reduced_basis.hpp"
+#include "reduced_field.hpp"
+#include "shooting.hpp"
+#include "user_orbit.hpp"
+
+namespace nbm {
+
+// The field an orbit lives on and the maps between its unknowns and the
+// user's vectors: the interior unknowns u_O, or the coordinates q of a
+// reduced basis (u_O = V q).
+struct OrbitModel {
+  const ContactProblem& problem;
+  Vector F;  ///< the (constant) load, internal coordinates
+  std::unique_ptr<ReducedField> full;
+  std::unique_ptr<ReducedBasis> basis;
+  int modes = 0;  ///< of the reduced basis; 0: none
+  std::vector<Index> interior;  ///< internal indices of the interior dofs
+  /// How the orbit was computed (continuation keeps it): shooting or not,
+  /// the field unknown of the phase condition, half-period shooting.
+  bool shooting = true;
+  ShootingOptions conditions;
+  /// A forced orbit's flow (damping and harmonic load, method.md §9) on
+  /// field(); null for an autonomous orbit.
+  std::unique_ptr<ExactFlow> forced;
+
+  explicit OrbitModel(const ContactProblem& p);
+  const ReducedField& field() const { return basis ? basis->field() : *full; }
+  /// The flow the orbit follows: the forced one, or the field's own.
+  ExactFlow flow() const { return forced ? *forced : ExactFlow(field()); }
+  /// Field unknowns of a user displacement (or velocity).
+  Vector unknowns(const Vector& user) const;
+  /// Internal vector of interior values (contact dofs zero).
+  Vector internal(const Vector& interior_values) const;
+  /// User vector of field unknowns: displacement (contact dofs from the
+  /// nodal boundary relation) or, with `v` given, the velocity.
+  Vector user(const Vector& u, const Vector* v = nullptr) const;
+};
+
+/// A user vector of size n, checked: InputError naming it on a wrong size
+/// or non-finite entries.
+Vector user_vector(const std::vector<double>& x, Index n, const std::string& name);
+std::vector<double> to_std(const Vector& x);
+/// Position in u_O of a user dof; InputError naming `name` if it is out of
+/// range, fixed or the normal component of a contact node.
+Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
+                        const std::string& name);
+
+/// The report of an orbit found on `model`; `method` opens its summary.
+OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
+                     OrbitReport report, const std::string& method);
+
+}  // namespace nbm

@@ -1,0 +1,115 @@
+// Forced periodic orbits on the user's dofs (method.md §9): the front end of
+// shoot_forced (forced_orbit.hpp) for the FreeFEM binding, reporting like the
+// autonomous front end (user_orbit.hpp, OrbitReport). Free of Eigen and
+// FreeFEM types.
+//
+// The excitation is the load
+//     F(t) = F0 + sum_{k=1..H} ( Fc_k cos(k omega t) + Fs_k sin(k omega t) )
+// on a damped model C = a_M M + b_K K (M the problem's mass: redistributed
+// with the massless boundary). The orbit has the period 2 pi m / omega and
+// no phase condition (the excitation fixes the time origin). Full interior
+// only: no reduced basis (its reduction residual would have to carry the
+// damping and the harmonic load).
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "periodic_defaults.hpp"
+#include "user_orbit.hpp"
+
+namespace nbm {
+
+struct ForcedOrbitOptions {
+  double omega = std::numeric_limits<double>::quiet_NaN();  ///< > 0, required
+  int subharmonic = 1;                                       ///< m >= 1
+  double rayleigh_mass = 0, rayleigh_stiffness = 0;          ///< a_M, b_K >= 0
+  /// User dof whose amplitude is reported (any dof that is not fixed);
+  /// -1: the dof of largest amplitude along the orbit.
+  long probe = -1;
+  /// Periods of the exact flow run from the guess before Newton (a stable
+  /// orbit's basin; forced_orbit.hpp).
+  int transient_periods = 0;
+  int max_iterations = periodic_max_iterations;
+};
+
+/// The forced orbit from the guess (u, v) at t = 0 (user vectors). F0 and
+/// every harmonic are user vectors (size n_dofs); `load_cos[k]`,
+/// `load_sin[k]` are the harmonic k + 1, either list may be shorter (zero
+/// harmonics) but not both empty; the harmonics must vanish on the normal
+/// components of the contact nodes (the exact flow does not model a
+/// time-varying offset of the nodal boundary relation, method.md §9).
+/// Throws InputError naming the argument (F0, Fc, Fs, u, v, omega,
+/// subharmonic, rayleighM, rayleighK, probe, transient, iterations),
+/// NumericalError if Newton does not converge or an undamped mode is in
+/// resonance with a harmonic.
+OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double>& F0,
+                         const std::vector<std::vector<double>>& load_cos,
+                         const std::vector<std::vector<double>>& load_sin,
+                         const std::vector<double>& u, const std::vector<double>& v,
+                         const ForcedOrbitOptions& options);
+
+/// Continuation of the forced orbit in the excitation frequency or in the
+/// amplitude of the harmonics (forced_continuation.hpp): a frequency- or
+/// amplitude-response curve with stability and events.
+struct ForcedResponseOptions {
+  std::string parameter = "omega";  ///< or "amplitude": a factor on Fc, Fs (1 at the start)
+  /// The curve starts at the orbit of `omega` (or at the factor 1), heads
+  /// towards `to` and stays within [min(from, to), max(from, to)]; `from`
+  /// NaN: the start.
+  double from = std::numeric_limits<double>::quiet_NaN();
+  double to = std::numeric_limits<double>::quiet_NaN();
+  double step = 0.02, max_step = 0.2;  ///< arclength steps in scaled unknowns
+  int max_points = 200;
+  bool locate_events = true;  ///< by bisection on the arclength (else interpolated)
+};
+
+struct ForcedResponsePoint {
+  double omega = 0, scale = 1, arclength = 0;
+  /// The probe dof (ForcedResponse::probe) over one period, as in OrbitReport.
+  double amplitude = 0, probe_min = 0, probe_max = 0;
+  double energy = 0, energy_max = 0;  ///< total energy at t = 0 and its largest value
+  double contact_time = 0, min_gap = 0, periodicity_residual = 0;
+  long switches = 0;
+  std::vector<double> moduli;  ///< |Floquet multipliers|, decreasing
+  bool stable = false;
+  std::string events;  ///< events between the previous point and this one, '+'-joined
+};
+
+struct ForcedResponseEvent {
+  std::string kind;  ///< "fold", "period doubling", "Neimark-Sacker", "grazing"
+  double parameter = 0, arclength = 0;
+  long point = 0;  ///< the point just past it
+  double multiplier_re = 0, multiplier_im = 0;  ///< the critical one (0 for grazing)
+  std::string description;
+};
+
+struct ForcedResponse {
+  std::vector<ForcedResponsePoint> points;
+  std::vector<ForcedResponseEvent> events;
+  long probe = -1;  ///< the user dof of the amplitudes
+  std::string stop_reason;
+  OrbitReport last;  ///< the last point as an orbit (nbmOrbit* accessors)
+};
+
+/// The response curve through the forced orbit of `orbit` (its omega,
+/// damping, subharmonic, transient, iterations; its probe, or -1: the dof of
+/// largest amplitude at the first point). Throws InputError naming the
+/// argument (as forced_orbit, and parameter, from, to, step, maxStep,
+/// points), NumericalError if the first orbit is not found; the curve ends
+/// early with a stop reason if the corrector fails further on.
+ForcedResponse forced_response(const ContactProblem& problem, const std::vector<double>& F0,
+                               const std::vector<std::vector<double>>& load_cos,
+                               const std::vector<std::vector<double>>& load_sin,
+                               const std::vector<double>& u, const std::vector<double>& v,
+                               const ForcedOrbitOptions& orbit,
+                               const ForcedResponseOptions& options);
+
+/// One CSV row per point: point, omega, scale, arclength, amplitude,
+/// probe_min, probe_max, energy, energy_max, contact_time, switches,
+/// min_gap, max_multiplier, mu2, mu3, mu4 (moduli), stable, periodicity,
+/// event. Throws InputError if the file cannot be written.
+void write_forced_response(const ForcedResponse& response, const std::string& path);
+
+}  // namespace nbm

@@ -1,0 +1,270 @@
+// The forced-orbit front end on user dofs (user_forced_orbit.hpp): the linear
+// limit against the frequency response of the damped bar computed here by a
+// dense solve, the report on user dofs, and input errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <complex>
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "bars.hpp"
+#include "errors.hpp"
+#include "user_forced_orbit.hpp"
+
+namespace {
+
+using nbm::Matrix;
+using nbm::Vector;
+using Complex = std::complex<double>;
+
+// The fixed-gap bar (paper NBM, N = 12) with the obstacle out of reach, Rayleigh
+// damping and a load whose harmonics vanish at the tip (the contact dof).
+struct ForcedBar {
+  nbm_test::GapBar bar;
+  std::unique_ptr<nbm::ContactProblem> problem;
+  std::vector<double> F0, Fc, Fs, zero;
+  nbm::ForcedOrbitOptions o;
+  ForcedBar() {
+    bar.N = 12;
+    bar.g = 1e6;
+    problem = bar.problem();
+    const int n = bar.N + 1;
+    zero.assign(n, 0.0);
+    F0 = Fc = Fs = zero;
+    for (int i = 1; i < bar.N; ++i) {
+      const double x = i * bar.h();
+      F0[i] = 0.3 * x, Fc[i] = std::sin(2 * x), Fs[i] = 0.5 * x * x;
+    }
+    F0[bar.N] = 0.1;  // a constant load on the contact dof is allowed
+    o.omega = 2.1;    // between the bar's first two modes (pi/2, 3 pi/2)
+    o.rayleigh_mass = 0.05, o.rayleigh_stiffness = 2e-3;
+    o.probe = bar.N - 1;
+  }
+  nbm::OrbitReport solve() const {
+    return nbm::forced_orbit(*problem, F0, {Fc}, {Fs}, zero, zero, o);
+  }
+};
+
+// The reference: the paper NBM with the contact open is the bar constrained
+// to u = P u_O + e, the tip following (K u)_N = F_N (method.md §3), so the
+// steady response is u_O = Re(X e^{i w t}) + static part with
+// P^T (K - w^2 M + i w C) P X = P^T (Fc - i Fs), C = a_M M + b_K K.
+TEST(UserForcedOrbit, LinearLimitIsTheDampedFrequencyResponseOnUserDofs) {
+  ForcedBar b;
+  const auto r = b.solve();
+  nbm::SparseMatrix Ms, Ks;
+  b.bar.assemble(Ms, Ks);
+  const int N = b.bar.N, n = N - 1;  // interior dofs 1..N-1
+  const Matrix M = Matrix(Ms).block(1, 1, N, N), K = Matrix(Ks).block(1, 1, N, N);
+  Matrix P = Matrix::Zero(N, n);
+  P.topRows(n).setIdentity();
+  P.row(n) = -K.block(n, 0, 1, n) / K(n, n);
+  Vector F0(N), Fc(N), Fs(N);
+  for (int i = 0; i < N; ++i) F0(i) = b.F0[i + 1], Fc(i) = b.Fc[i + 1], Fs(i) = b.Fs[i + 1];
+  // Static part: u = P u_O + e with e the tip's response to F0 alone.
+  Vector e = Vector::Zero(N);
+  e(n) = F0(n) / K(n, n);
+  const Vector us = P * (P.transpose() * K * P).ldlt().solve(P.transpose() * (F0 - K * e)) + e;
+  const double w = b.o.omega;
+  const Matrix C = b.o.rayleigh_mass * M + b.o.rayleigh_stiffness * K;
+  const Eigen::MatrixXcd Z = (P.transpose() * (K - w * w * M) * P).cast<Complex>() +
+                             Complex(0, w) * (P.transpose() * C * P).cast<Complex>();
+  const Eigen::VectorXcd X =
+      P.cast<Complex>() * Z.partialPivLu().solve(P.transpose().cast<Complex>() *
+                                                 (Fc.cast<Complex>() - Complex(0, 1) * Fs.cast<Complex>()));
+  const Vector u_ref = us + X.real(), v_ref = (Complex(0, w) * X).real();
+  ASSERT_EQ(r.u0.size(), static_cast<std::size_t>(N + 1));
+  EXPECT_EQ(r.u0[0], 0.0);
+  const double us_scale = u_ref.cwiseAbs().maxCoeff(), vs_scale = v_ref.cwiseAbs().maxCoeff();
+  for (int i = 0; i < N; ++i) {
+    EXPECT_NEAR(r.u0[i + 1], u_ref(i), 1e-10 * us_scale) << i;
+    EXPECT_NEAR(r.v0[i + 1], v_ref(i), 1e-10 * vs_scale) << i;
+  }
+  EXPECT_NEAR(r.period, 2 * M_PI / w, 1e-15);
+  EXPECT_EQ(r.switches, 0);
+  EXPECT_TRUE(r.stable);
+  EXPECT_LE(r.periodicity_residual, 1e-12);
+  // The probe's amplitude is |X| (one harmonic), up to the sampling (512).
+  const int p = b.o.probe;
+  EXPECT_EQ(r.probe, p);
+  EXPECT_NEAR(r.amplitude, std::abs(X(p - 1)), 1e-4 * std::abs(X(p - 1)));
+  EXPECT_NEAR(0.5 * (r.probe_max + r.probe_min), us(p - 1), 1e-4 * std::abs(X(p - 1)));
+  EXPECT_EQ(r.omega, w);
+  EXPECT_NE(r.summary.find("forced orbit: omega"), std::string::npos);
+  // Every multiplier of the linear orbit is a damped mode's exp(lambda T):
+  // modulus exp(-c_j T / 2) < 1.
+  for (std::size_t k = 0; k < r.multipliers_re.size(); ++k)
+    EXPECT_LT(std::hypot(r.multipliers_re[k], r.multipliers_im[k]), 1.0);
+  // The state after one period (orbit_states follows the forced flow).
+  std::vector<std::vector<double>> us_t, vs_t;
+  nbm::orbit_states(r, {r.period}, us_t, vs_t);
+  for (int i = 0; i <= N; ++i) EXPECT_NEAR(us_t[0][i], r.u0[i], 1e-10 * us_scale);
+}
+
+TEST(UserForcedOrbit, SubharmonicOfALinearOrbitIsTheHarmonicOrbit) {
+  ForcedBar b;
+  const auto one = b.solve();
+  b.o.subharmonic = 3;
+  const auto three = b.solve();
+  EXPECT_NEAR(three.period, 3 * one.period, 1e-14 * three.period);
+  for (std::size_t i = 0; i < one.u0.size(); ++i) EXPECT_NEAR(three.u0[i], one.u0[i], 1e-10);
+}
+
+TEST(UserForcedOrbit, DefaultProbeIsTheDofOfLargestAmplitude) {
+  ForcedBar b;
+  b.o.probe = -1;
+  const auto r = b.solve();
+  std::vector<std::vector<double>> us, vs;
+  std::vector<double> times;
+  for (int k = 0; k < 512; ++k) times.push_back(r.period * k / 512);
+  nbm::orbit_states(r, times, us, vs);
+  double best = 0;
+  for (std::size_t i = 0; i < r.u0.size(); ++i) {
+    double lo = 1e300, hi = -1e300;
+    for (const auto& u : us) lo = std::min(lo, u[i]), hi = std::max(hi, u[i]);
+    best = std::max(best, 0.5 * (hi - lo));
+  }
+  EXPECT_NEAR(r.amplitude, best, 1e-12 * best);
+}
+
+// The bar's damped frequency response at the probe, |X_p(w)| (one harmonic
+// Fc - i Fs), by the dense Guyan solve of the linear-limit test.
+double bar_response(const ForcedBar& b, double w, int p) {
+  nbm::SparseMatrix Ms, Ks;
+  b.bar.assemble(Ms, Ks);
+  const int N = b.bar.N, n = N - 1;
+  const Matrix M = Matrix(Ms).block(1, 1, N, N), K = Matrix(Ks).block(1, 1, N, N);
+  Matrix P = Matrix::Zero(N, n);
+  P.topRows(n).setIdentity();
+  P.row(n) = -K.block(n, 0, 1, n) / K(n, n);
+  Vector Fc(N), Fs(N);
+  for (int i = 0; i < N; ++i) Fc(i) = b.Fc[i + 1], Fs(i) = b.Fs[i + 1];
+  const Matrix C = b.o.rayleigh_mass * M + b.o.rayleigh_stiffness * K;
+  const Eigen::MatrixXcd Z = (P.transpose() * (K - w * w * M) * P).cast<Complex>() +
+                             Complex(0, w) * (P.transpose() * C * P).cast<Complex>();
+  const Eigen::VectorXcd X = P.cast<Complex>() *
+      Z.partialPivLu().solve(P.transpose().cast<Complex>() *
+                             (Fc.cast<Complex>() - Complex(0, 1) * Fs.cast<Complex>()));
+  return std::abs(X(p - 1));
+}
+
+// A frequency sweep through the first resonance of the linear bar: every
+// point's amplitude is the direct frequency response (to the 512-sample
+// resolution of the extremes), all stable, no event, the curve ends at `to`.
+TEST(UserForcedOrbit, ResponseCurveOfTheLinearBarIsItsFrequencyResponse) {
+  ForcedBar b;
+  b.o.omega = 1.0;
+  nbm::ForcedResponseOptions r;
+  r.to = 2.2;
+  r.step = 0.05;
+  r.max_step = 2;  // the arclength counts displacements in units of the first orbit's
+  const auto curve = nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero,
+                                          b.o, r);
+  ASSERT_GE(curve.points.size(), 5u) << curve.stop_reason;
+  EXPECT_EQ(curve.probe, b.o.probe);
+  EXPECT_NE(curve.stop_reason.find("bound"), std::string::npos) << curve.stop_reason;
+  EXPECT_TRUE(curve.events.empty());
+  EXPECT_NEAR(curve.points.back().omega, 2.2, 1e-9);
+  double top = 0;
+  for (const auto& p : curve.points) {
+    const double ref = bar_response(b, p.omega, b.o.probe);
+    EXPECT_NEAR(p.amplitude, ref, 1e-4 * ref) << "omega " << p.omega;
+    EXPECT_TRUE(p.stable);
+    EXPECT_EQ(p.switches, 0);
+    top = std::max(top, p.amplitude);
+  }
+  EXPECT_GT(top, 3 * curve.points.front().amplitude);  // it crossed the resonance (pi/2)
+  EXPECT_NEAR(curve.last.omega, 2.2, 1e-9);
+  EXPECT_NE(curve.last.summary.find("pseudo-arclength continuation in omega"), std::string::npos);
+  // The CSV: a header and a row per point.
+  const std::string path = testing::TempDir() + "forced-response.csv";
+  nbm::write_forced_response(curve, path);
+  std::ifstream f(path);
+  std::string line;
+  int rows = 0;
+  std::getline(f, line);
+  EXPECT_EQ(line.rfind("point,omega,scale,", 0), 0u);
+  while (std::getline(f, line)) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(curve.points.size()));
+  std::remove(path.c_str());
+}
+
+// In the amplitude factor the linear response grows in proportion.
+TEST(UserForcedOrbit, AmplitudeCurveOfTheLinearBarIsProportional) {
+  ForcedBar b;
+  nbm::ForcedResponseOptions r;
+  r.parameter = "amplitude";
+  r.to = 3;
+  r.from = 0.5;
+  const auto curve = nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero,
+                                          b.o, r);
+  ASSERT_GE(curve.points.size(), 3u);
+  const double unit = curve.points.front().amplitude;
+  for (const auto& p : curve.points) EXPECT_NEAR(p.amplitude, p.scale * unit, 1e-9 * p.amplitude);
+  EXPECT_NEAR(curve.points.back().scale, 3, 1e-9);
+}
+
+template <class F>
+void expect_input_error(F&& f, const std::string& text) {
+  try {
+    f();
+    ADD_FAILURE() << "no error, expected: " << text;
+  } catch (const nbm::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
+TEST(UserForcedOrbit, BadInputIsNamed) {
+  ForcedBar b;
+  auto with = [&](auto change, const std::string& text) {
+    ForcedBar c;
+    change(c);
+    expect_input_error([&] { c.solve(); }, text);
+  };
+  with([](ForcedBar& c) { c.o.omega = 0; }, "omega: expected a finite excitation frequency > 0");
+  with([](ForcedBar& c) { c.o.omega = NAN; }, "omega: expected");
+  with([](ForcedBar& c) { c.o.subharmonic = 0; }, "subharmonic: expected m >= 1");
+  with([](ForcedBar& c) { c.o.rayleigh_mass = -1; }, "rayleighM: -1");
+  with([](ForcedBar& c) { c.o.rayleigh_stiffness = INFINITY; }, "rayleighK: inf");
+  with([](ForcedBar& c) { c.o.probe = 0; }, "probe: dof 0 is fixed");
+  with([](ForcedBar& c) { c.o.probe = 99; }, "probe: dof 99 out of range");
+  with([](ForcedBar& c) { c.o.transient_periods = -1; }, "transient: expected");
+  with([](ForcedBar& c) { c.o.max_iterations = 0; }, "iterations: expected >= 1");
+  with([](ForcedBar& c) { c.Fc[c.bar.N] = 1; },
+       "Fc (harmonic 1): non-zero on the normal component of contact node 0");
+  with([](ForcedBar& c) { c.Fs.pop_back(); }, "Fs (harmonic 1): size 12, expected 13");
+  with([](ForcedBar& c) { c.Fs[3] = NAN; }, "Fs (harmonic 1): non-finite");
+  with([](ForcedBar& c) { c.F0.push_back(0); }, "F0: size 14, expected 13");
+  expect_input_error(
+      [&] { nbm::forced_orbit(*b.problem, b.F0, {}, {}, b.zero, b.zero, b.o); },
+      "Fc, Fs: no load harmonic");
+  auto response = [&](nbm::ForcedResponseOptions r, const std::string& text) {
+    expect_input_error(
+        [&] { nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero, b.o, r); },
+        text);
+  };
+  nbm::ForcedResponseOptions r;
+  response(r, "to: expected a finite end of the omega range");
+  r.to = b.o.omega;
+  response(r, "to: expected a finite end");
+  r.to = 3;
+  r.from = 2.5;
+  response(r, "from: expected the other end of the omega range");
+  r.from = NAN;
+  r.parameter = "force";
+  response(r, "parameter: \"force\"; expected \"omega\" or \"amplitude\"");
+  r.parameter = "omega";
+  r.step = 0;
+  response(r, "step, maxStep: expected 0 < step <= maxStep");
+  r.step = 0.02;
+  r.max_points = 0;
+  response(r, "points: expected >= 1");
+  // Autonomous continuation refuses forced orbits.
+  const auto orbit = b.solve();
+  expect_input_error([&] { nbm::continue_orbit(orbit, orbit, 0.1); },
+                     "continuation follows autonomous orbits");
+}
+
+}  // namespace
