@@ -127,6 +127,18 @@ TEST(UserForcedOrbit, DefaultProbeIsTheDofOfLargestAmplitude) {
     best = std::max(best, 0.5 * (hi - lo));
   }
   EXPECT_NEAR(r.amplitude, best, 1e-12 * best);
+  // The largest total energy at those samples (no switch: the same times),
+  // computed here from the bar's own matrices: 1/2 v'Mv + 1/2 u'Ku - F0'u.
+  nbm::SparseMatrix M, K;
+  b.bar.assemble(M, K);
+  double energy = -1e300;
+  for (std::size_t k = 0; k < us.size(); ++k) {
+    const Vector u = Eigen::Map<const Vector>(us[k].data(), us[k].size());
+    const Vector v = Eigen::Map<const Vector>(vs[k].data(), vs[k].size());
+    const Vector F0 = Eigen::Map<const Vector>(b.F0.data(), b.F0.size());
+    energy = std::max(energy, 0.5 * v.dot(M * v) + 0.5 * u.dot(K * u) - F0.dot(u));
+  }
+  EXPECT_NEAR(r.energy_max, energy, 1e-10 * std::abs(energy));
 }
 
 // The bar's damped frequency response at the probe, |X_p(w)| (one harmonic

@@ -135,7 +135,7 @@ Samples sample(const OrbitModel& model, const ExactFlow& flow, const PeriodicOrb
     const Vector user = model.user(uk);
     s.lo = s.lo.cwiseMin(user), s.hi = s.hi.cwiseMax(user);
     s.energy_max = std::max(
-        s.energy_max, field.energies(field.expand(uk), field.expand_velocity(uk, vk))(3));
+        s.energy_max, field.energies(uk, vk)(3));
   }
   return s;
 }
