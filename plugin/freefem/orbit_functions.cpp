@@ -193,39 +193,81 @@ nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expressi
   return o;
 }
 
-// nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v, ...): H is KNM<double>* (one
-// column per harmonic) or KN<double>* (one harmonic).
+// The positional arguments shared by nbmForcedOrbit and nbmForcedResponse,
+// (S, F0, Fc, Fs, omega, u, v): H is KNM<double>* (one column per harmonic)
+// or KN<double>* (one harmonic).
+struct ForcedInputs {
+  NbmHandle* h;
+  nbm::Solver* solver;
+  KN<double>* U;
+  KN<double>* V;
+  nbm::ForcedOrbitOptions options;
+  std::vector<double> u, v, F0;
+  std::vector<std::vector<double>> cosines, sines;
+};
+
 template <class H>
-class ForcedOrbit : public E_F0mps {
+class ForcedCall : public E_F0mps {
+ public:
+  Expression handle, F0, Fc, Fs, omega, u, v;
+
+  explicit ForcedCall(const Expression (&e)[7])
+      : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {}
+
+  /// The inputs, checked; `nargs` begins with the six named arguments of
+  /// forced_options.
+  ForcedInputs gather(Stack s, const Expression* nargs, const char* fn) const {
+    ForcedInputs in;
+    in.h = GetAny<NbmHandle*>((*handle)(s));
+    in.solver = &solver_of(in.h, fn);
+    in.U = GetAny<KN<double>*>((*u)(s));
+    in.V = GetAny<KN<double>*>((*v)(s));
+    if (in.U == in.V) fail(std::string(fn) + ": u and v must be different arrays");
+    in.options = forced_options(*in.solver, nargs, s, GetAny<double>((*omega)(s)), fn);
+    in.u = vector_of<double>(in.U, fn, "u");
+    in.v = vector_of<double>(in.V, fn, "v");
+    in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
+    in.cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
+    in.sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    return in;
+  }
+};
+
+// The FreeFEM operator of a ForcedCall: (S, F0, Fc, Fs, omega, u, v) typed
+// for H, returning R.
+template <class Call, class H, class R>
+class ForcedOp : public OneOperator {
+ public:
+  ForcedOp()
+      : OneOperator(atype<R>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
+                    atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[7];
+    for (int k = 0; k < 7; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new Call(args, e);
+  }
+};
+
+// nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v, ...).
+template <class H>
+class ForcedOrbit : public ForcedCall<H> {
  public:
   static const int n_name_param = 6;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
-  Expression handle, F0, Fc, Fs, omega, u, v;
 
-  ForcedOrbit(const basicAC_F0& args, const Expression (&e)[7])
-      : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {
+  ForcedOrbit(const basicAC_F0& args, const Expression (&e)[7]) : ForcedCall<H>(e) {
     args.SetNameParam(n_name_param, name_param, nargs);
   }
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedOrbit";
-    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
-    nbm::Solver& solver = solver_of(h, fn);
-    KN<double>* U = GetAny<KN<double>*>((*u)(s));
-    KN<double>* V = GetAny<KN<double>*>((*v)(s));
-    if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
-    const nbm::ForcedOrbitOptions o =
-        forced_options(solver, nargs, s, GetAny<double>((*omega)(s)), fn);
-    const std::vector<double> uu = vector_of<double>(U, fn, "u");
-    const std::vector<double> vv = vector_of<double>(V, fn, "v");
-    const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
-    const auto cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
-    const auto sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    const ForcedInputs in = this->gather(s, nargs, fn);
     auto report = guarded(fn, [&] {
-      return nbm::forced_orbit(solver.problem(), FF, cosines, sines, uu, vv, o);
+      return nbm::forced_orbit(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
+                               in.options);
     });
-    return SetAny<double>(keep(h, std::move(report), U, V));
+    return SetAny<double>(keep(in.h, std::move(report), in.U, in.V));
   }
   operator aType() const override { return atype<double>(); }
 };
@@ -235,19 +277,6 @@ basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
     {"rayleighM", &typeid(double)}, {"rayleighK", &typeid(double)},
     {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
     {"transient", &typeid(long)},   {"iterations", &typeid(long)},
-};
-
-template <class H>
-class ForcedOrbitOp : public OneOperator {
- public:
-  ForcedOrbitOp()
-      : OneOperator(atype<double>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
-                    atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
-  E_F0* code(const basicAC_F0& args) const override {
-    Expression e[7];
-    for (int k = 0; k < 7; ++k) e[k] = t[k]->CastTo(args[k]);
-    return new ForcedOrbit<H>(args, e);
-  }
 };
 
 // nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments
@@ -260,27 +289,19 @@ int event_code(const std::string& kind) {
 }
 
 template <class H>
-class ForcedResponse : public E_F0mps {
+class ForcedResponse : public ForcedCall<H> {
  public:
   static const int n_name_param = 16;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
-  Expression handle, F0, Fc, Fs, omega, u, v;
 
-  ForcedResponse(const basicAC_F0& args, const Expression (&e)[7])
-      : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {
+  ForcedResponse(const basicAC_F0& args, const Expression (&e)[7]) : ForcedCall<H>(e) {
     args.SetNameParam(n_name_param, name_param, nargs);
   }
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedResponse";
-    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
-    nbm::Solver& solver = solver_of(h, fn);
-    KN<double>* U = GetAny<KN<double>*>((*u)(s));
-    KN<double>* V = GetAny<KN<double>*>((*v)(s));
-    if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
-    const nbm::ForcedOrbitOptions o =
-        forced_options(solver, nargs, s, GetAny<double>((*omega)(s)), fn);
+    const ForcedInputs in = this->gather(s, nargs, fn);
     nbm::ForcedResponseOptions r;
     if (nargs[6]) r.parameter = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) r.from = GetAny<double>((*nargs[7])(s));
@@ -291,13 +312,9 @@ class ForcedResponse : public E_F0mps {
     if (nargs[11]) r.max_points = static_cast<int>(GetAny<long>((*nargs[11])(s)));
     if (nargs[12]) r.locate_events = GetAny<bool>((*nargs[12])(s));
     const std::string file = nargs[13] ? *GetAny<string*>((*nargs[13])(s)) : std::string();
-    const std::vector<double> uu = vector_of<double>(U, fn, "u");
-    const std::vector<double> vv = vector_of<double>(V, fn, "v");
-    const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
-    const auto cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
-    const auto sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
     nbm::ForcedResponse response = guarded(fn, [&] {
-      return nbm::forced_response(solver.problem(), FF, cosines, sines, uu, vv, o, r);
+      return nbm::forced_response(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
+                                  in.options, r);
     });
     if (!file.empty()) guarded(fn, [&] { nbm::write_forced_response(response, file); });
     if (nargs[14]) {  // curve = C: a row per point
@@ -328,7 +345,7 @@ class ForcedResponse : public E_F0mps {
               << " events; " << response.stop_reason << std::endl;
     for (const auto& e : response.events) std::cout << "  " << e.description << std::endl;
     const long n = static_cast<long>(response.points.size());
-    keep(h, std::move(response.last), U, V);
+    keep(in.h, std::move(response.last), in.U, in.V);
     return SetAny<long>(n);
   }
   operator aType() const override { return atype<long>(); }
@@ -344,19 +361,6 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"maxStep", &typeid(double)},   {"points", &typeid(long)},
     {"locate", &typeid(bool)},      {"file", &typeid(string*)},
     {"curve", &typeid(KNM<double>*)}, {"events", &typeid(KNM<double>*)},
-};
-
-template <class H>
-class ForcedResponseOp : public OneOperator {
- public:
-  ForcedResponseOp()
-      : OneOperator(atype<long>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
-                    atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
-  E_F0* code(const basicAC_F0& args) const override {
-    Expression e[7];
-    for (int k = 0; k < 7; ++k) e[k] = t[k]->CastTo(args[k]);
-    return new ForcedResponse<H>(args, e);
-  }
 };
 
 const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {
@@ -456,10 +460,11 @@ void load_orbit_functions() {
   using H = NbmHandle*;
   using R = KN<double>*;
   Global.Add("nbmPeriodicOrbit", "(", new PeriodicOrbitOp);
-  Global.Add("nbmForcedOrbit", "(", new ForcedOrbitOp<KNM<double>*>);
-  Global.Add("nbmForcedOrbit", "(", new ForcedOrbitOp<KN<double>*>);
-  Global.Add("nbmForcedResponse", "(", new ForcedResponseOp<KNM<double>*>);
-  Global.Add("nbmForcedResponse", "(", new ForcedResponseOp<KN<double>*>);
+  using A = KNM<double>*;  // harmonics as the columns of a real[int,int], or one real[int]
+  Global.Add("nbmForcedOrbit", "(", new ForcedOp<ForcedOrbit<A>, A, double>);
+  Global.Add("nbmForcedOrbit", "(", new ForcedOp<ForcedOrbit<R>, R, double>);
+  Global.Add("nbmForcedResponse", "(", new ForcedOp<ForcedResponse<A>, A, long>);
+  Global.Add("nbmForcedResponse", "(", new ForcedOp<ForcedResponse<R>, R, long>);
   Global.Add("nbmOrbitAmplitude", "(", new OneOperator1_<double, H>(orbit_amplitude));
   Global.Add("nbmOrbitProbe", "(", new OneOperator2_<long, H, R>(orbit_probe));
   Global.Add("nbmContinueOrbit", "(", new OneOperator4_<double, H, R, R, double>(continue_orbit));
