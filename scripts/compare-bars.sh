@@ -48,14 +48,7 @@ while [ $# -gt 0 ]; do
     *) echo "compare-bars: unknown option $1"; exit 1 ;;
   esac
 done
-if [ $build = 1 ]; then
-  bash "$repo/scripts/install-deps.sh" >/dev/null
-  bash "$repo/scripts/build.sh" >/dev/null
-fi
-NBM_BUILD=${NBM_BUILD:-$repo/build}
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
-cd "$out"
+enter_sweep "$build" "$out"
 start=$(date +%s)
 
 # One run: problem method order N -> <name>.log, <name>.csv, <name>.wall

@@ -62,14 +62,7 @@ while [ $# -gt 0 ]; do
     *) extra+=("$1"); shift ;;
   esac
 done
-if [ $build = 1 ]; then
-  bash "$repo/scripts/install-deps.sh" >/dev/null
-  bash "$repo/scripts/build.sh" >/dev/null
-fi
-NBM_BUILD=${NBM_BUILD:-$repo/build}
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
-cd "$out"
+enter_sweep "$build" "$out"
 run() {  # run <name> <script> [args...]: runs, times, keeps the summary line
   local name=$1 script=$2
   shift 2

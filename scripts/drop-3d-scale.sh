@@ -40,14 +40,7 @@ while [ $# -gt 0 ]; do
     *) extra+=("$1"); shift ;;
   esac
 done
-if [ $build = 1 ]; then
-  bash "$repo/scripts/install-deps.sh" >/dev/null
-  bash "$repo/scripts/build.sh" >/dev/null
-fi
-NBM_BUILD=${NBM_BUILD:-$repo/build}
-mkdir -p "$out"
-out=$(cd "$out" && pwd)
-cd "$out"
+enter_sweep "$build" "$out"
 load_before=$(cut -d' ' -f1-3 /proc/loadavg)
 v() { summary_value "$1" "$2"; }
 rounds=""

@@ -8,6 +8,21 @@ summary_value() {
   printf '%s\n' "$1" | tr -s ' \t' '\n\n' | sed -n "s/^$2=//p" | tail -n 1
 }
 
+# enter_sweep BUILD OUT: for the sweeps (compare-bars, compare-plate,
+# drop-3d-scale): installs what is missing and builds when BUILD is 1 (their
+# -skip-build makes it 0), sets NBM_BUILD (default $repo/build), creates OUT
+# and enters it, leaving its absolute path in `out`.
+enter_sweep() {
+  if [ "$1" = 1 ]; then
+    bash "$repo/scripts/install-deps.sh" >/dev/null
+    bash "$repo/scripts/build.sh" >/dev/null
+  fi
+  NBM_BUILD=${NBM_BUILD:-$repo/build}
+  mkdir -p "$2"
+  out=$(cd "$2" && pwd)
+  cd "$out"
+}
+
 # plot_contact_end PNG TITLE CURVES: the paper-Figure-1 style plot of the
 # bouncing bar's contact-end height u(0,t) (bouncing-bar.edp CSVs: t, u(0,t),
 # exact) with a zoom on the first contact, flight and second contact. CURVES:
