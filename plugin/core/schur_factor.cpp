@@ -98,9 +98,11 @@ Index SchurFactor::changes(const std::vector<Index>& a, const std::vector<Index>
 }
 
 std::size_t SchurFactor::bytes() const {
+  // A fresh factor has no capacitance system (an LLT never computed, whose
+  // matrixLLT() Eigen's assertions refuse).
+  const Index capacitance = fresh() ? 0 : capacitance_.matrixLLT().size();
   const auto doubles = static_cast<std::size_t>(llt_.matrixLLT().size() + X_.size() + V_.size() +
-                                                capacitance_.matrixLLT().size() + w_.size() +
-                                                t_.size());
+                                                capacitance + w_.size() + t_.size());
   return sizeof(*this) + doubles * sizeof(double) +
          (columns_.size() + changed_.size()) * sizeof(Index);
 }
