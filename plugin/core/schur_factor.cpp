@@ -1,5 +1,7 @@
 #include "schur_factor.hpp"
 
+#include <stdexcept>
+
 #include "errors.hpp"
 
 namespace nbm {
@@ -36,6 +38,9 @@ SchurFactor::SchurFactor(const Matrix& W, std::vector<Index> columns,
   for (Index k = 0; k < n; ++k)
     if (columns_[k] != c0[k]) changed_.push_back(k);
   const Index r = static_cast<Index>(changed_.size());
+  // With r = 0 every block below is empty (and Eigen's triangular solves
+  // would bind references into null storage): the caller uses the base.
+  if (r == 0) throw std::logic_error("SchurFactor: bordered on a base with the same columns");
   // T = [S0 B; B' C] = L_T L_T', L_T = [L0 0; X' L22]: X = L0^-1 B,
   // L22 L22' = C - X' X.
   X_.resize(n, r);

@@ -30,8 +30,10 @@ class SchurFactor {
   /// is not positive definite.
   SchurFactor(const Matrix& W, std::vector<Index> columns);
   /// The factor of W[columns, columns] bordered on `base` (a fresh factor of
-  /// the same W whose columns differ at few nodes). Throws NumericalError if
-  /// a bordered block is not positive definite.
+  /// the same W whose columns differ at few nodes, and at one at least: for
+  /// the base's own columns, use the base). Throws NumericalError if a
+  /// bordered block is not positive definite, std::logic_error if no column
+  /// differs.
   SchurFactor(const Matrix& W, std::vector<Index> columns,
               std::shared_ptr<const SchurFactor> base);
 
