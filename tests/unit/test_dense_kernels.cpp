@@ -156,15 +156,7 @@ TEST(DenseKernels, OneSetConstrainedSolveMatchesDenseKkt) {
   for (const nbm::ActiveSet& active :
        {nbm::ActiveSet(nc, false), nbm::ActiveSet(nc, true),
         nbm::ActiveSet{true, false, false, true, true, false}}) {
-    Mat G(nc, n);
-    for (int k = 0; k < nc; ++k) G.row(k) = Bd.col(active[k] ? nc + k : k).transpose();
-    Mat kkt = Mat::Zero(n + nc, n + nc);
-    kkt.topLeftCorner(n, n) = X;
-    kkt.topRightCorner(n, nc) = -G.transpose();
-    kkt.bottomLeftCorner(nc, n) = G;
-    Vec rhs(n + nc);
-    rhs << r, h;
-    const Vec x_ref = kkt.fullPivLu().solve(rhs).head(n);
+    const Vec x_ref = kkt_solution(X, Bd, active, r, h);
     Vec x;
     nbm::solve_constrained_once(*inverse, B, active, r, h, x);
     EXPECT_LE((x - x_ref).cwiseAbs().maxCoeff(), 1e-10 * x_ref.cwiseAbs().maxCoeff());
