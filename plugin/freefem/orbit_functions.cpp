@@ -60,6 +60,12 @@
 //                                              // (re, im), arclength
 //   // Pseudo-arclength continuation (core: forced_continuation.hpp): returns
 //   // the number of points; u, v and the last orbit are the last point's.
+//   // With doubling = true (method.md §9, branch switching): at the curve's
+//   // first period doubling, the period-2m orbit (doublingAmplitude = 1e-3:
+//   // its offset along the critical eigenvector, scaled unknowns) and its
+//   // branch over the same range (doubled = D, doubledFile = "...": rows and
+//   // CSV as curve, file); u, v and the last orbit are then that period-2m
+//   // orbit (subharmonic 2m). No period doubling: an ExecError.
 //   real a = nbmOrbitAmplitude(S);    // (max - min) / 2 of u[probe] over a period
 //   nbmOrbitProbe(S, r);              // probe dof, min, max, largest total energy
 #include <cmath>
@@ -288,10 +294,24 @@ int event_code(const std::string& kind) {
   return 3;  // grazing
 }
 
+// The rows of `curve = C` (and `doubled = D`): a row per point.
+void curve_rows(const std::vector<nbm::ForcedResponsePoint>& points, KNM<double>* C) {
+  C->resize(points.size(), 14);
+  for (long k = 0; k < static_cast<long>(points.size()); ++k) {
+    const nbm::ForcedResponsePoint& p = points[k];
+    const double row[14] = {p.omega, p.scale, p.arclength, p.amplitude, p.probe_min,
+                            p.probe_max, p.energy, p.energy_max, p.contact_time,
+                            static_cast<double>(p.switches), p.min_gap,
+                            p.moduli.empty() ? 0.0 : p.moduli[0],
+                            p.stable ? 1.0 : 0.0, p.periodicity_residual};
+    for (long j = 0; j < 14; ++j) (*C)(k, j) = row[j];
+  }
+}
+
 template <class H>
 class ForcedResponse : public ForcedCall<H> {
  public:
-  static const int n_name_param = 16;
+  static const int n_name_param = 20;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -311,25 +331,18 @@ class ForcedResponse : public ForcedCall<H> {
     r.max_step = nargs[10] ? GetAny<double>((*nargs[10])(s)) : std::max(r.max_step, r.step);
     if (nargs[11]) r.max_points = static_cast<int>(GetAny<long>((*nargs[11])(s)));
     if (nargs[12]) r.locate_events = GetAny<bool>((*nargs[12])(s));
+    if (nargs[16]) r.doubling = GetAny<bool>((*nargs[16])(s));
+    if (nargs[17]) r.doubling_amplitude = GetAny<double>((*nargs[17])(s));
+    if (!r.doubling && (nargs[17] || nargs[18] || nargs[19]))
+      fail(std::string(fn) +
+           ": doublingAmplitude, doubled, doubledFile: only with doubling = true");
     const std::string file = nargs[13] ? *GetAny<string*>((*nargs[13])(s)) : std::string();
     nbm::ForcedResponse response = guarded(fn, [&] {
       return nbm::forced_response(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
                                   in.options, r);
     });
     if (!file.empty()) guarded(fn, [&] { nbm::write_forced_response(response, file); });
-    if (nargs[14]) {  // curve = C: a row per point
-      KNM<double>* C = GetAny<KNM<double>*>((*nargs[14])(s));
-      C->resize(response.points.size(), 14);
-      for (long k = 0; k < static_cast<long>(response.points.size()); ++k) {
-        const nbm::ForcedResponsePoint& p = response.points[k];
-        const double row[14] = {p.omega, p.scale, p.arclength, p.amplitude, p.probe_min,
-                                p.probe_max, p.energy, p.energy_max, p.contact_time,
-                                static_cast<double>(p.switches), p.min_gap,
-                                p.moduli.empty() ? 0.0 : p.moduli[0],
-                                p.stable ? 1.0 : 0.0, p.periodicity_residual};
-        for (long j = 0; j < 14; ++j) (*C)(k, j) = row[j];
-      }
-    }
+    if (nargs[14]) curve_rows(response.points, GetAny<KNM<double>*>((*nargs[14])(s)));
     if (nargs[15]) {  // events = E: a row per event
       KNM<double>* E = GetAny<KNM<double>*>((*nargs[15])(s));
       E->resize(response.events.size(), 6);
@@ -345,7 +358,24 @@ class ForcedResponse : public ForcedCall<H> {
               << " events; " << response.stop_reason << std::endl;
     for (const auto& e : response.events) std::cout << "  " << e.description << std::endl;
     const long n = static_cast<long>(response.points.size());
-    keep(in.h, std::move(response.last), in.U, in.V);
+    if (!response.doubling) {
+      keep(in.h, std::move(response.last), in.U, in.V);
+      return SetAny<long>(n);
+    }
+    // Branch switching: the period-2m branch, and its first orbit as the last one.
+    const nbm::ForcedDoubling& d = *response.doubling;
+    if (nargs[18]) curve_rows(d.branch.points, GetAny<KNM<double>*>((*nargs[18])(s)));
+    const std::string doubledFile = nargs[19] ? *GetAny<string*>((*nargs[19])(s)) : std::string();
+    if (!doubledFile.empty())
+      guarded(fn, [&] { nbm::write_forced_response(d.branch, doubledFile, "doubledFile"); });
+    std::cout << fn << ": period doubling at " << r.parameter << " = " << d.event_parameter
+              << ", period-" << 2 * in.options.subharmonic << " orbit at " << d.parameter
+              << " (separation over one period before doubling " << d.separation
+              << "); its branch: " << d.branch.points.size() << " points, "
+              << d.branch.events.size() << " events; " << d.branch.stop_reason << std::endl;
+    for (const auto& e : d.branch.events) std::cout << "  " << e.description << std::endl;
+    nbm::OrbitReport switched = d.orbit;
+    keep(in.h, std::move(switched), in.U, in.V);
     return SetAny<long>(n);
   }
   operator aType() const override { return atype<long>(); }
@@ -361,6 +391,8 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"maxStep", &typeid(double)},   {"points", &typeid(long)},
     {"locate", &typeid(bool)},      {"file", &typeid(string*)},
     {"curve", &typeid(KNM<double>*)}, {"events", &typeid(KNM<double>*)},
+    {"doubling", &typeid(bool)},    {"doublingAmplitude", &typeid(double)},
+    {"doubled", &typeid(KNM<double>*)}, {"doubledFile", &typeid(string*)},
 };
 
 const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {

@@ -177,6 +177,137 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
   return report;
 }
 
+// A copy of the model of `f` following the flow of its load at parameter p
+// (scaled by `factor` for the amplitude): every report keeps the flow it
+// was sampled on (nbmOrbitState integrates it later).
+std::shared_ptr<OrbitModel> model_at(const ForcedSetup& f, const ForcedContinuationOptions& c,
+                                     double p) {
+  auto m = std::make_shared<OrbitModel>(f.model->problem);
+  m->F = f.model->F;
+  m->full = std::make_unique<ReducedField>(f.model->field());
+  m->shooting = true;
+  m->forced =
+      std::make_unique<ExactFlow>(m->field(), f.damping, forced_load(f.load, c.parameter, p));
+  return m;
+}
+
+// The user-level response of a curve of continue_forced on the load of `f`
+// (whose amplitude factor 1 is `factor` times the user's): a row per point
+// (amplitude of `probe`, or -1: the dof of largest amplitude at the first
+// point), the events, the last point as an orbit report.
+ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
+                              const ForcedContinuationOptions& c, const ForcedOrbitOptions& o,
+                              long probe, const std::string& parameter, double factor) {
+  ForcedResponse out;
+  out.probe = probe;
+  out.stop_reason = curve.stop_reason;
+  const OrbitModel& model = *f.model;
+  for (std::size_t k = 0; k < curve.points.size(); ++k) {
+    const ForcedPoint& p = curve.points[k];
+    const ExactFlow flow(model.field(), f.damping, forced_load(f.load, c.parameter, p.parameter));
+    const Samples s = sample(model, flow, p.orbit);
+    if (k == 0) out.probe = probe_of(model.problem, s, out.probe);
+    ForcedResponsePoint row;
+    row.omega = p.omega, row.scale = factor * p.scale, row.arclength = p.arclength;
+    row.probe_min = s.lo(out.probe), row.probe_max = s.hi(out.probe);
+    row.amplitude = 0.5 * (row.probe_max - row.probe_min);
+    row.energy = p.orbit.energy_start(3), row.energy_max = s.energy_max;
+    row.contact_time = p.orbit.contact_time, row.min_gap = p.min_gap;
+    row.periodicity_residual = p.orbit.periodicity_residual;
+    row.switches = p.switches;
+    for (const auto& mu : p.orbit.multipliers) row.moduli.push_back(std::abs(mu));
+    row.stable = p.orbit.stable;
+    out.points.push_back(std::move(row));
+  }
+  for (const ForcedEvent& e : curve.events) {
+    ForcedResponseEvent ev;
+    ev.kind = to_string(e.kind);
+    ev.parameter = c.parameter == ForcedParameter::amplitude ? factor * e.parameter : e.parameter;
+    ev.arclength = e.arclength;
+    ev.point = static_cast<long>(e.point) + 1;
+    ev.multiplier_re = e.multiplier.real(), ev.multiplier_im = e.multiplier.imag();
+    ev.description = e.description;
+    if (ev.point < static_cast<long>(out.points.size())) {
+      std::string& tag = out.points[ev.point].events;
+      tag += (tag.empty() ? "" : "+") + ev.kind;
+    }
+    out.events.push_back(std::move(ev));
+  }
+  // The last point as the orbit report (its flow: the last parameter).
+  const ForcedPoint& last = curve.points.back();
+  ForcedOrbitOptions lo = o;
+  lo.probe = out.probe;
+  lo.subharmonic = c.shooting.subharmonic;
+  std::ostringstream method;
+  method.precision(12);
+  method << "method pseudo-arclength continuation in " << parameter << " (last of "
+         << curve.points.size() << " points, amplitude factor " << factor * last.scale
+         << "): " << curve.stop_reason;
+  out.last = forced_report(model_at(f, c, last.parameter), last.orbit, lo, last.omega,
+                           f.load.harmonics(), method.str());
+  return out;
+}
+
+// Branch switching at the first period doubling of `curve` (method.md §9):
+// the period-2m orbit, then its branch over the same range, heading to the
+// side of the event where the orbit was found.
+std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
+                                                    const ForcedCurve& curve,
+                                                    const ForcedContinuationOptions& c,
+                                                    const ForcedOrbitOptions& o, long probe,
+                                                    const ForcedResponseOptions& r) {
+  const auto event = std::find_if(curve.events.begin(), curve.events.end(), [](const auto& e) {
+    return e.kind == ForcedEventKind::period_doubling;
+  });
+  if (event == curve.events.end())
+    throw InputError("doubling: no period doubling on the curve (" +
+                     std::to_string(curve.points.size()) + " points, " +
+                     std::to_string(curve.events.size()) + " events; " + curve.stop_reason +
+                     "): nothing to switch at");
+  const PeriodDoubledOrbit doubled =
+      switch_at_period_doubling(f.model->field(), f.damping, f.load, c, curve, *event,
+                                r.doubling_amplitude);
+  if (doubled.parameter < c.parameter_min || doubled.parameter > c.parameter_max)
+    throw NumericalError("doubling: the period-" + std::to_string(2 * c.shooting.subharmonic) +
+                         " orbit was found at " + r.parameter + " = " +
+                         number(doubled.parameter) + ", outside the range [" +
+                         number(c.parameter_min) + ", " + number(c.parameter_max) +
+                         "] (period doubling at " + number(event->parameter) +
+                         "): widen the range or lower doublingAmplitude");
+  auto d = std::make_shared<ForcedDoubling>();
+  d->event_parameter = event->parameter, d->parameter = doubled.parameter;
+  d->separation = doubled.separation;
+  // The branch: the load at the orbit's parameter is its start (for the
+  // amplitude, factor 1 of the continuation is the user's factor p).
+  ForcedSetup g;
+  g.model = f.model;
+  g.damping = f.damping;
+  g.load = forced_load(f.load, c.parameter, doubled.parameter);
+  ForcedContinuationOptions c2 = c;
+  c2.shooting.subharmonic = 2 * c.shooting.subharmonic;
+  c2.shooting.transient_periods = 0;
+  c2.length = 0, c2.parameter_scale = 0;
+  c2.direction = doubled.parameter >= event->parameter ? 1 : -1;
+  const bool amplitude = c.parameter == ForcedParameter::amplitude;
+  const double factor = amplitude ? doubled.parameter : 1.0;
+  if (amplitude) c2.parameter_min /= factor, c2.parameter_max /= factor;
+  const ForcedCurve branch = continue_forced(g.model->field(), g.damping, g.load,
+                                             doubled.orbit.u0, doubled.orbit.v0, c2);
+  ForcedOrbitOptions o2 = o;
+  o2.omega = g.load.omega;
+  d->branch = describe_curve(g, branch, c2, o2, probe, r.parameter, factor);
+  o2.probe = probe;
+  o2.subharmonic = c2.shooting.subharmonic;
+  std::ostringstream method;
+  method.precision(12);
+  method << "method branch switching at the period doubling at " << r.parameter << " = "
+         << event->parameter << " (separation over one period before doubling "
+         << doubled.separation << ")";
+  d->orbit = forced_report(model_at(g, c2, amplitude ? 1.0 : doubled.parameter),
+                           doubled.orbit, o2, g.load.omega, f.load.harmonics(), method.str());
+  return d;
+}
+
 }  // namespace
 
 OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double>& F0,
@@ -236,60 +367,20 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
   c.shooting.subharmonic = o.subharmonic;
   c.shooting.max_iterations = o.max_iterations;
   c.shooting.transient_periods = o.transient_periods;
+  if (r.doubling && !(r.doubling_amplitude > 0 && std::isfinite(r.doubling_amplitude)))
+    throw InputError("doublingAmplitude: expected a finite amplitude > 0 (scaled unknowns), got " +
+                     number(r.doubling_amplitude));
   const ForcedCurve curve = continue_forced(f.model->field(), f.damping, f.load,
                                             f.model->unknowns(uu), f.model->unknowns(vv), c);
-
-  ForcedResponse out;
-  out.stop_reason = curve.stop_reason;
-  const OrbitModel& model = *f.model;
-  for (std::size_t k = 0; k < curve.points.size(); ++k) {
-    const ForcedPoint& p = curve.points[k];
-    const ExactFlow flow(model.field(), f.damping, forced_load(f.load, c.parameter, p.parameter));
-    const Samples s = sample(model, flow, p.orbit);
-    if (k == 0) out.probe = probe_of(problem, s, o.probe);
-    ForcedResponsePoint row;
-    row.omega = p.omega, row.scale = p.scale, row.arclength = p.arclength;
-    row.probe_min = s.lo(out.probe), row.probe_max = s.hi(out.probe);
-    row.amplitude = 0.5 * (row.probe_max - row.probe_min);
-    row.energy = p.orbit.energy_start(3), row.energy_max = s.energy_max;
-    row.contact_time = p.orbit.contact_time, row.min_gap = p.min_gap;
-    row.periodicity_residual = p.orbit.periodicity_residual;
-    row.switches = p.switches;
-    for (const auto& mu : p.orbit.multipliers) row.moduli.push_back(std::abs(mu));
-    row.stable = p.orbit.stable;
-    out.points.push_back(std::move(row));
-  }
-  for (const ForcedEvent& e : curve.events) {
-    ForcedResponseEvent ev;
-    ev.kind = to_string(e.kind);
-    ev.parameter = e.parameter, ev.arclength = e.arclength;
-    ev.point = static_cast<long>(e.point) + 1;
-    ev.multiplier_re = e.multiplier.real(), ev.multiplier_im = e.multiplier.imag();
-    ev.description = e.description;
-    if (ev.point < static_cast<long>(out.points.size())) {
-      std::string& tag = out.points[ev.point].events;
-      tag += (tag.empty() ? "" : "+") + ev.kind;
-    }
-    out.events.push_back(std::move(ev));
-  }
-  // The last point as the orbit report (its flow: the last parameter).
-  const ForcedPoint& last = curve.points.back();
-  f.model->forced = std::make_unique<ExactFlow>(
-      f.model->field(), f.damping, forced_load(f.load, c.parameter, last.parameter));
-  ForcedOrbitOptions lo = o;
-  lo.probe = out.probe;
-  std::ostringstream method;
-  method.precision(12);
-  method << "method pseudo-arclength continuation in " << r.parameter << " (last of "
-         << curve.points.size() << " points, amplitude factor " << last.scale
-         << "): " << curve.stop_reason;
-  out.last = forced_report(f.model, last.orbit, lo, last.omega, f.load.harmonics(), method.str());
+  ForcedResponse out = describe_curve(f, curve, c, o, o.probe, r.parameter, 1.0);
+  if (r.doubling) out.doubling = switch_branch(f, curve, c, o, out.probe, r);
   return out;
 }
 
-void write_forced_response(const ForcedResponse& r, const std::string& path) {
+void write_forced_response(const ForcedResponse& r, const std::string& path,
+                           const std::string& argument) {
   std::ofstream f(path);
-  if (!f) throw InputError("file: cannot write " + path);
+  if (!f) throw InputError(argument + ": cannot write " + path);
   f.precision(12);
   f << "point,omega,scale,arclength,amplitude,probe_min,probe_max,energy,energy_max,"
        "contact_time,switches,min_gap,max_multiplier,mu2,mu3,mu4,stable,periodicity,event\n";
@@ -305,7 +396,7 @@ void write_forced_response(const ForcedResponse& r, const std::string& path) {
     f << "," << (p.stable ? 1 : 0) << "," << p.periodicity_residual << ","
       << (p.events.empty() ? "none" : p.events) << "\n";
   }
-  if (!f) throw InputError("file: cannot write " + path);
+  if (!f) throw InputError(argument + ": cannot write " + path);
 }
 
 }  // namespace nbm

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,12 @@ struct ForcedResponseOptions {
   double step = 0.02, max_step = 0.2;  ///< arclength steps in scaled unknowns
   int max_points = 200;
   bool locate_events = true;  ///< by bisection on the arclength (else interpolated)
+  /// Branch switching (method.md §9, "Branch switching at a period
+  /// doubling"): at the curve's first period doubling, the period-2m orbit
+  /// through x* + amplitude e (scaled unknowns), then its branch continued
+  /// with the same range and steps (ForcedResponse::doubling).
+  bool doubling = false;
+  double doubling_amplitude = 1e-3;
 };
 
 struct ForcedResponsePoint {
@@ -85,20 +92,38 @@ struct ForcedResponseEvent {
   std::string description;
 };
 
+struct ForcedDoubling;
+
 struct ForcedResponse {
   std::vector<ForcedResponsePoint> points;
   std::vector<ForcedResponseEvent> events;
   long probe = -1;  ///< the user dof of the amplitudes
   std::string stop_reason;
   OrbitReport last;  ///< the last point as an orbit (nbmOrbit* accessors)
+  /// With ForcedResponseOptions::doubling: the switch and the period-2m branch.
+  std::shared_ptr<const ForcedDoubling> doubling;
+};
+
+/// The period-2m branch from the first period doubling of a response curve.
+struct ForcedDoubling {
+  double event_parameter = 0;  ///< where the period doubling was located
+  double parameter = 0;        ///< where the period-2m orbit was found, near it
+  /// |Phi_T(x0) - x0| in the scaled unknowns of the curve (T the period
+  /// before doubling): about `doubling_amplitude` for the period-2m orbit, 0
+  /// for the period-m one (forced_continuation.hpp, PeriodDoubledOrbit).
+  double separation = 0;
+  OrbitReport orbit;      ///< the period-2m orbit found (subharmonic 2m)
+  ForcedResponse branch;  ///< its continuation (points, events; `last`: its last point)
 };
 
 /// The response curve through the forced orbit of `orbit` (its omega,
 /// damping, subharmonic, transient, iterations; its probe, or -1: the dof of
 /// largest amplitude at the first point). Throws InputError naming the
 /// argument (as forced_orbit, and parameter, from, to, step, maxStep,
-/// points), NumericalError if the first orbit is not found; the curve ends
-/// early with a stop reason if the corrector fails further on.
+/// points, doubling, doublingAmplitude), NumericalError if the first orbit is
+/// not found or, with `doubling`, no period-2m orbit is found at the curve's
+/// first period doubling (InputError `doubling` if the curve has none); the
+/// curve ends early with a stop reason if the corrector fails further on.
 ForcedResponse forced_response(const ContactProblem& problem, const std::vector<double>& F0,
                                const std::vector<std::vector<double>>& load_cos,
                                const std::vector<std::vector<double>>& load_sin,
@@ -109,7 +134,8 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
 /// One CSV row per point: point, omega, scale, arclength, amplitude,
 /// probe_min, probe_max, energy, energy_max, contact_time, switches,
 /// min_gap, max_multiplier, mu2, mu3, mu4 (moduli), stable, periodicity,
-/// event. Throws InputError if the file cannot be written.
-void write_forced_response(const ForcedResponse& response, const std::string& path);
+/// event. Throws InputError naming `argument` if the file cannot be written.
+void write_forced_response(const ForcedResponse& response, const std::string& path,
+                           const std::string& argument = "file");
 
 }  // namespace nbm
