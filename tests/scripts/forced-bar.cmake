@@ -40,6 +40,7 @@ nbm_summary_test(forced-bar-consistent-linear
 # Bad input of branch switching (tests/scripts/bad-input/forced-doubling.edp).
 set(NBM_DOUBLING_CASES ${CMAKE_CURRENT_SOURCE_DIR}/bad-input/forced-doubling.edp)
 nbm_bad_valid(doubling-valid ${NBM_DOUBLING_CASES} -case valid-doubling)
+nbm_bad_valid(doubling-valid-amplitude ${NBM_DOUBLING_CASES} -case valid-doubling-amplitude)
 function(nbm_bad_doubling_case name regex)
   nbm_bad_input_test(${name} ${regex} ${NBM_DOUBLING_CASES} -case ${name})
 endfunction()

@@ -201,6 +201,9 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
   ForcedResponse out;
   out.probe = probe;
   out.stop_reason = curve.stop_reason;
+  if (c.parameter == ForcedParameter::amplitude && factor != 1.0)
+    out.stop_reason += " (amplitude scales relative to the factor " + number(factor) +
+                       " where the branch starts)";
   const OrbitModel& model = *f.model;
   for (std::size_t k = 0; k < curve.points.size(); ++k) {
     const ForcedPoint& p = curve.points[k];
