@@ -273,6 +273,13 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   r.step = 0.02;
   r.max_points = 0;
   response(r, "points: expected >= 1");
+  // Branch switching needs a period doubling: the linear bar has none.
+  r.max_points = 3;
+  r.doubling = true;
+  r.doubling_amplitude = -1;
+  response(r, "doublingAmplitude: expected a finite amplitude > 0");
+  r.doubling_amplitude = 1e-3;
+  response(r, "doubling: no period doubling on the curve (3 points, 0 events");
   // Autonomous continuation refuses forced orbits.
   const auto orbit = b.solve();
   expect_input_error([&] { nbm::continue_orbit(orbit, orbit, 0.1); },
