@@ -13,7 +13,10 @@ set(FORCED_BAR ${PROJECT_SOURCE_DIR}/edp/forced-bar.edp)
 # omega (both found, none spurious); the folds lie where omega turns; points
 # without contact are stable; the wall holds; every point periodic to 1e-10;
 # the curve reaches its end.
-set(FORCED_BAR_CHECKS "linearDifference<=1e-10 arcLinearDifference<=2e-5 grazingRoots>=2 linearGrazings<=2 grazingMatched>=2 grazingError<=1e-8 grazingAmplitudeError<=1e-7 folds>=2 foldCheck<=0.01 foldsWithoutTurn<=0 linearUnstable<=0 penetration<=1e-12 periodicity<=1e-10 arcEnd>=1.199")
+set(FORCED_BAR_CHECKS "linearDifference<=1e-10 arcLinearDifference<=2e-5 \
+grazingRoots>=2 linearGrazings<=2 grazingMatched>=2 grazingError<=1e-8 grazingAmplitudeError<=1e-7 \
+folds>=2 foldCheck<=0.01 foldsWithoutTurn<=0 linearUnstable<=0 penetration<=1e-12 \
+periodicity<=1e-10 arcEnd>=1.199")
 # P1, N = 20, gap 0.1, aM = 0.02, bK = 0.002 (0.8% of critical): the curve
 # has period doublings; branch switching at the first finds a period-2 orbit
 # (periodic to 1e-10 over 2T, not over T: |u(T) - u(0)| / |u(0)| = 4.4e-3
