@@ -26,8 +26,9 @@
 // Forced orbits (method.md §9; core: user_forced_orbit.hpp), under the load
 // F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t):
 //   real T = nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v,  // guess (u, v) at t = 0
-//              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K; default:
-//                                              // the NBM object's coefficients
+//              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K (+ the NBM
+//                                              // object's damping= matrix, if any);
+//                                              // default: the NBM object's coefficients
 //              subharmonic = 1,                // period 2 pi m / omega
 //              probe = dof,                    // amplitude of this dof (default:
 //                                              // the dof of largest amplitude)
@@ -180,7 +181,8 @@ std::vector<std::vector<double>> harmonics_of(KN<double>* x, const char* fn, con
 // The options of a forced orbit from the first six named arguments
 // (rayleighM, rayleighK, subharmonic, probe, transient, iterations) of
 // nbmForcedOrbit and nbmForcedResponse; the damping defaults to the NBM
-// object's Rayleigh coefficients.
+// object's Rayleigh coefficients, and its damping matrix (if any) is always
+// part of the model.
 nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expression* nargs,
                                        Stack s, double omega, const char* fn) {
   const nbm::SolverOptions& so = solver.options();
@@ -188,10 +190,7 @@ nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expressi
   o.omega = omega;
   o.rayleigh_mass = nargs[0] ? GetAny<double>((*nargs[0])(s)) : so.rayleigh_mass;
   o.rayleigh_stiffness = nargs[1] ? GetAny<double>((*nargs[1])(s)) : so.rayleigh_stiffness;
-  if (so.damping.rows > 0)
-    fail(std::string(fn) + ": the NBM object has an assembled damping matrix, which forced "
-         "orbits do not support yet (its reduced form does not decouple on the modes, "
-         "method.md §9); build it with rayleighM=, rayleighK= only");
+  o.damping = so.damping;
   if (nargs[2]) o.subharmonic = static_cast<int>(GetAny<long>((*nargs[2])(s)));
   if (nargs[3]) o.probe = GetAny<long>((*nargs[3])(s));
   if (nargs[4]) o.transient_periods = static_cast<int>(GetAny<long>((*nargs[4])(s)));

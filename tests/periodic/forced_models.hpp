@@ -57,8 +57,12 @@ struct ForcedChain {
   /// x = (u, v) at t = 0, over `periods` periods 2 pi / w.
   Vector integrate(double a_M, const Vector& Fc, double w, const Vector& x, int periods,
                    int steps = 40000) const {
+    return integrate_damped(a_M * M().topLeftCorner(n, n), Fc, w, x, periods, steps);
+  }
+  /// The same with any interior damping matrix Cr (n x n).
+  Vector integrate_damped(const Matrix& Cr, const Vector& Fc, double w, const Vector& x,
+                          int periods, int steps = 40000) const {
     const Matrix Mr = M().topLeftCorner(n, n), Minv = Mr.inverse(), Kr = reduced_K();
-    const Matrix Cr = a_M * Mr;
     auto field = [&](double t, const Vector& y) {
       Vector force = Fc * std::cos(w * t) - Kr * y.head(n) - Cr * y.tail(n);
       force(n - 1) -= kc * std::max(y(n - 1) - gap, 0.0);

@@ -107,9 +107,6 @@ TEST(ForcedFlow, UndampedResonanceAndBadExcitationAreNamedErrors) {
   const nbm::ExactFlow flow(field, nbm::Damping{}, load);
   EXPECT_THROW(flow.integrate(Vector::Zero(1), Vector::Zero(1), 1, false), nbm::NumericalError);
 
-  nbm::Damping matrix;
-  matrix.C_user = nbm::SparseMatrix(2, 2);
-  EXPECT_THROW(nbm::ExactFlow(field, matrix, load), nbm::InputError);
   nbm::Damping negative;
   negative.a_M = -1;
   EXPECT_THROW(nbm::ExactFlow(field, negative, load), nbm::InputError);

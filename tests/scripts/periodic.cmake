@@ -118,7 +118,7 @@ nbm_bad_orbit_case(forced-transient [[nbmForcedOrbit: transient: expected a numb
 nbm_bad_orbit_case(forced-iterations [[nbmForcedOrbit: iterations: expected >= 1]])
 nbm_bad_orbit_case(forced-same-array [[nbmForcedOrbit: u and v must be different arrays]])
 nbm_bad_orbit_case(forced-no-convergence [[nbmForcedOrbit: forced orbit: no convergence in 1 Newton iteration]])
-nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: the NBM object has an assembled damping matrix]])
+nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: damping: non-zero on the normal component of contact node 0]])
 nbm_bad_orbit_case(forced-amplitude-autonomous [[nbmOrbitAmplitude: the last orbit is not a forced orbit]])
 nbm_bad_orbit_case(forced-continue [[nbmContinueOrbit: continuation follows autonomous orbits]])
 nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the NBM object was not constructed]])
@@ -150,6 +150,22 @@ nbm_summary_test(forced-plate-linear
 nbm_summary_test(forced-plate-settle
   "settleStart>=0.29 settleDistance<=1e-3 settleDistanceFine<=5e-4 settleRatio<=0.8 contact>=1 stable>=1 periodicity<=1e-10 complementarity<=1e-12"
   ${FORCED_PLATE} -out forced-settle -points 31 -down 0 -arclength 0)
+# An assembled damping matrix (-dampedHalf: cd rho on the clamped half, not
+# proportional to M or K; the state-space flow, method.md §9). Linear limit:
+# the direct frequency response with the same matrix, to 1e-10. With the wall:
+# the damped Newmark stepper (its own damping matrix code) settles on the
+# stable contact orbit, closer at T/800 than at T/400. The continuation runs
+# through both folds on the same flow.
+nbm_summary_test(forced-plate-damping-matrix-linear
+  "linearDifference<=1e-10 periodicity<=1e-10 contact<=0 failed<=0"
+  ${FORCED_PLATE} -out forced-dmatrix-linear -mass consistent -contactFree 1 -points 5 -down 0 -settle 0 -arclength 0 -dampedHalf 3)
+nbm_summary_test(forced-plate-damping-matrix-settle
+  "settleStart>=0.29 settleDistance<=1e-3 settleDistanceFine<=3e-4 settleRatio<=0.5 contact>=1 stable>=1 periodicity<=1e-10"
+  ${FORCED_PLATE} -out forced-dmatrix-settle -points 31 -down 0 -arclength 0 -dampedHalf 3)
+nbm_summary_test(forced-plate-damping-matrix-curve
+  "folds>=2 arcPeriodicity<=1e-10 arcEnd>=1.399 arcUnstable>=1 arcContact>=1"
+  ${FORCED_PLATE} -out forced-dmatrix-curve -settle 0 -points 13 -down 0 -dampedHalf 3)
+
 # The response curve by continuation in omega (nbmForcedResponse) against the
 # sweeps, which know nothing of it: the two folds it finds lie within one
 # sweep step (0.01) of where the sweeps jump (up: off the upper branch;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "errors.hpp"
+#include "state_space_flow.hpp"
 
 namespace nbm {
 namespace {
@@ -208,19 +209,38 @@ Matrix RegionFlow::transition(double t) const {
 
 ExactFlow::ExactFlow(const ReducedField& field, const Damping& damping, const HarmonicLoad& load)
     : field_(field) {
-  if (damping.has_matrix())
-    throw InputError("exact flow: an assembled damping matrix is not supported yet (its reduced "
-                     "form does not decouple on the modes of a region); give Rayleigh "
-                     "coefficients a_M, b_K");
   if (!(damping.a_M >= 0) || !(damping.b_K >= 0) || !std::isfinite(damping.a_M) ||
       !std::isfinite(damping.b_K))
     throw InputError("exact flow: the Rayleigh coefficients a_M, b_K must be finite and >= 0");
   forcing_.a_M = damping.a_M;
   forcing_.b_K = damping.b_K;
+  const Index N = field.n_internal();
+  if (damping.has_matrix()) {
+    const SparseMatrix& C = damping.C_user;
+    if (C.rows() != N || C.cols() != N)
+      throw InputError("exact flow: the damping matrix is " + std::to_string(C.rows()) + "x" +
+                       std::to_string(C.cols()) + ", expected " + std::to_string(N) + "x" +
+                       std::to_string(N) + " (internal coordinates)");
+    const Matrix dense(C);
+    if (!dense.allFinite()) throw InputError("exact flow: the damping matrix has non-finite entries");
+    const double round_off = 1e-14 * dense.cwiseAbs().maxCoeff();
+    for (Index c : field.contact())
+      if (dense.row(c).cwiseAbs().maxCoeff() > round_off ||
+          dense.col(c).cwiseAbs().maxCoeff() > round_off)
+        throw InputError("exact flow: the damping matrix couples contact dof " +
+                         std::to_string(c) +
+                         "; it must vanish on the contact dofs (their reactions would depend "
+                         "on the velocities, method.md §9)");
+    // A zero matrix adds nothing: the modal flow stays.
+    if (dense.cwiseAbs().maxCoeff() > 0) {
+      forcing_.C_interior =
+          std::make_shared<const Matrix>(dense(field.interior(), field.interior()));
+      state_space_ = std::make_shared<StateSpaceCache>();
+    }
+  }
   const int harmonics = load.harmonics();
   if (harmonics > 0 && (!(load.omega > 0) || !std::isfinite(load.omega)))
     throw InputError("exact flow: the excitation frequency omega must be finite and > 0");
-  const Index N = field.n_internal();
   // Harmonic k of cos or sin (zero if the list is shorter), checked.
   auto harmonic = [&](const std::vector<Vector>& list, const char* name, int k) -> Vector {
     if (static_cast<std::size_t>(k) >= list.size()) return Vector::Zero(N);
@@ -245,10 +265,44 @@ ExactFlow::ExactFlow(const ReducedField& field, const Damping& damping, const Ha
   }
 }
 
+ExactFlow ExactFlow::with_load(const HarmonicLoad& load) const {
+  Damping rayleigh;
+  rayleigh.a_M = forcing_.a_M, rayleigh.b_K = forcing_.b_K;
+  ExactFlow flow(field_, rayleigh, load);
+  flow.forcing_.C_interior = forcing_.C_interior;
+  flow.state_space_ = state_space_;
+  return flow;
+}
+
+std::unique_ptr<FlowPiece> ExactFlow::piece(const Region& region, const Vector& u,
+                                            const Vector& v, double t0) const {
+  if (!forcing_.C_interior) return std::make_unique<RegionFlow>(region, forcing_, u, v, t0);
+  StateSpaceCache& cache = *state_space_;
+  std::shared_ptr<const StateSpaceModes> modes;
+  const auto found = cache.modes.find(region.active);
+  if (found != cache.modes.end()) {
+    modes = found->second;
+  } else {
+    const Matrix C_S =
+        forcing_.a_M * region.M + forcing_.b_K * region.K + *forcing_.C_interior;
+    modes = std::make_shared<const StateSpaceModes>(region, C_S);
+    // A few regions per orbit: a small FIFO bounds the dense 2n x 2n factors held.
+    constexpr std::size_t kMaxCachedRegions = 8;
+    if (cache.order.size() >= kMaxCachedRegions) {
+      cache.modes.erase(cache.order.front());
+      cache.order.erase(cache.order.begin());
+    }
+    cache.modes.emplace(region.active, modes);
+    cache.order.push_back(region.active);
+  }
+  return std::make_unique<StateSpaceRegionFlow>(region, std::move(modes), forcing_, u, v, t0);
+}
+
 Vector ExactFlow::acceleration(const Region& region, const Vector& u, const Vector& v,
                                double t) const {
-  // M_S u'' = f_S + F_h(t) - K_S u - (a_M M_S + b_K K_S) u'.
+  // M_S u'' = f_S + F_h(t) - K_S u - (a_M M_S + b_K K_S + C_OO) u'.
   Vector rhs = region.f - region.K * (u + forcing_.b_K * v);
+  if (forcing_.C_interior) rhs -= *forcing_.C_interior * v;
   if (!forcing_.load.empty()) rhs += forcing_.at(t);
   return region.mass.solve(rhs) - forcing_.a_M * v;
 }
@@ -276,8 +330,9 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
                            " switches (Zeno behaviour?)");
     const auto held = field_.region(out.active);
     const Region& region = *held;
-    const RegionFlow piece(region, forcing_, out.u, out.v, t0 + t);
-    const auto crossing = first_crossing(piece.switching(), 0, T - t);
+    const std::unique_ptr<FlowPiece> flow = piece(region, out.u, out.v, t0 + t);
+    const FlowPiece& piece = *flow;
+    const auto crossing = first_crossing(piece, 0, T - t);
     const double tau = crossing ? crossing->t : T - t;
     for (; next_sample < sample_times.size() && sample_times[next_sample] <= t + tau;
          ++next_sample) {

@@ -1,12 +1,15 @@
 // The exact flow of the reduced NBM equations (reduced_field.hpp), with
-// Rayleigh damping and a harmonic load (method.md §6, §9): modal solution on
-// each region, switching times by rigorous root finding on the switching
+// damping and a harmonic load (method.md §6, §9): modal solution on each
+// region (Rayleigh damping; state_space_flow.hpp for an assembled damping
+// matrix), switching times by rigorous root finding on the switching
 // functions (switching.hpp), and the state-transition (monodromy) matrix
 // with saltation terms where the acceleration jumps.
 #pragma once
 
 #include <complex>
 #include <limits>
+#include <map>
+#include <memory>
 #include <vector>
 
 #include "damping.hpp"
@@ -22,10 +25,23 @@ namespace nbm {
 /// sum_k Re(load_k exp(i Omega_k t)) with load_k = cos_k - i sin_k.
 struct FlowForcing {
   double a_M = 0, b_K = 0;
+  /// The interior block C_OO of an assembled damping matrix (dense n x n; it
+  /// vanishes on the contact dofs, so C_S = a_M M_S + b_K K_S + C_OO on every
+  /// region); null without one.
+  std::shared_ptr<const Matrix> C_interior;
   std::vector<double> Omega;
   std::vector<Eigen::VectorXcd> load;
   /// The harmonic part of the interior load at time t.
   Vector at(double t) const;
+};
+
+/// The flow on one region in closed form: the state at local time t, the
+/// transition matrix d(u, v)(t) / d(u0, v0) (2n x 2n; the load does not enter
+/// it) and the region's switching functions h(t) = H u(t) + d.
+class FlowPiece : public SwitchingFunctions {
+ public:
+  virtual void state(double t, Vector& u, Vector& v) const = 0;
+  virtual Matrix transition(double t) const = 0;
 };
 
 /// The flow on one region from (u0, v0) at absolute time t0 (local time 0).
@@ -34,18 +50,15 @@ struct FlowForcing {
 /// c = a_M + b_K w^2, solved in closed form: a stationary (or, for a rigid
 /// mode, zero-state) response to p, a steady harmonic response
 /// P_k / (w^2 - Omega_k^2 + i c Omega_k) per harmonic, and the damped free
-/// response (under-, critically or over-damped) of what remains. The
-/// region's switching functions h(t) = H u(t) + d are this object's.
-class RegionFlow : public SwitchingFunctions {
+/// response (under-, critically or over-damped) of what remains.
+class RegionFlow : public FlowPiece {
  public:
   /// Throws NumericalError if an undamped mode is in resonance with a
   /// harmonic of the load (no periodic particular solution).
   RegionFlow(const Region& region, const FlowForcing& forcing, const Vector& u0, const Vector& v0,
              double t0 = 0);
-  void state(double t, Vector& u, Vector& v) const;
-  const SwitchingFunctions& switching() const { return *this; }
-  /// d(u, v)(t) / d(u0, v0): 2n x 2n (the load does not enter it).
-  Matrix transition(double t) const;
+  void state(double t, Vector& u, Vector& v) const override;
+  Matrix transition(double t) const override;
 
   Index rows() const override { return r_.d.size(); }
   Vector value(double t) const override;
@@ -82,6 +95,8 @@ class RegionFlow : public SwitchingFunctions {
   mutable ModalState last_;
 };
 
+struct StateSpaceModes;  // state_space_flow.hpp
+
 struct SwitchEvent {
   double t;          ///< time of the switch
   Index contact;     ///< the contact whose state changed (the first, if several)
@@ -104,11 +119,15 @@ class ExactFlow {
   explicit ExactFlow(const ReducedField& field) : field_(field) {}
   /// With damping and a harmonic load (harmonic_load.hpp). Throws
   /// InputError on negative or non-finite Rayleigh coefficients, on an
-  /// assembled damping matrix (not supported by the exact flow yet: its
-  /// reduced form does not decouple on the modes, method.md §9), on
-  /// harmonics of the wrong size, non-finite, or non-zero on a contact dof,
-  /// and on omega <= 0 with harmonics.
+  /// assembled damping matrix of the wrong size, non-finite, or non-zero on
+  /// a contact dof (its rows and columns there would make the reactions
+  /// depend on the velocities), on harmonics of the wrong size, non-finite,
+  /// or non-zero on a contact dof, and on omega <= 0 with harmonics. With an
+  /// assembled matrix the region flows are state_space_flow.hpp's.
   ExactFlow(const ReducedField& field, const Damping& damping, const HarmonicLoad& load);
+  /// The same field and damping under another harmonic load (continuation
+  /// in the excitation): shares the eigendecompositions already computed.
+  ExactFlow with_load(const HarmonicLoad& load) const;
   /// Flows (u0, v0) from the absolute time t0 over [t0, t0 + T] (sample and
   /// switch times are counted from t0). With `sensitivity`, also the
   /// monodromy matrix. `sample_times` (sorted, in [0, T]) asks for the state
@@ -122,8 +141,20 @@ class ExactFlow {
   const FlowForcing& forcing() const { return forcing_; }
 
  private:
+  /// The flow on `region` from (u, v) at absolute time t0.
+  std::unique_ptr<FlowPiece> piece(const Region& region, const Vector& u, const Vector& v,
+                                   double t0) const;
+
   const ReducedField& field_;
   FlowForcing forcing_;
+  /// With an assembled damping matrix: the state-space decompositions of the
+  /// regions met so far, shared by copies and by with_load (at most
+  /// kMaxCachedRegions, the oldest dropped first).
+  struct StateSpaceCache {
+    std::map<ActiveSet, std::shared_ptr<const StateSpaceModes>> modes;
+    std::vector<ActiveSet> order;
+  };
+  std::shared_ptr<StateSpaceCache> state_space_;
 };
 
 }  // namespace nbm

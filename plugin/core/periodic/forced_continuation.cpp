@@ -36,8 +36,8 @@ class ScaledProblem {
  public:
   ScaledProblem(const ReducedField& field, const Damping& damping, const HarmonicLoad& load,
                 const ForcedContinuationOptions& o, double L, double V, double P)
-      : field_(field), damping_(damping), load_(load), o_(o), n_(field.size()), L_(L), V_(V),
-        P_(P) {}
+      : field_(field), load_(load), base_(field, damping, load), o_(o),
+        n_(field.size()), L_(L), V_(V), P_(P) {}
 
   Index size() const { return 2 * n_ + 1; }
   Index p_index() const { return 2 * n_; }
@@ -58,9 +58,9 @@ class ScaledProblem {
     return y;
   }
 
-  ExactFlow flow(double p) const {
-    return ExactFlow(field_, damping_, forced_load(load_, o_.parameter, p));
-  }
+  /// The flow at parameter p; with_load shares the state-space
+  /// decompositions of a damping matrix between the parameters.
+  ExactFlow flow(double p) const { return base_.with_load(forced_load(load_, o_.parameter, p)); }
   bool admissible(double p) const {
     return std::isfinite(p) && (o_.parameter != ForcedParameter::frequency || p > 0);
   }
@@ -181,8 +181,8 @@ class ScaledProblem {
 
  private:
   const ReducedField& field_;
-  const Damping& damping_;
   const HarmonicLoad& load_;
+  const ExactFlow base_;  ///< at the starting load
   const ForcedContinuationOptions& o_;
   Index n_;
   double L_, V_, P_;

@@ -9,6 +9,7 @@
 #include "forced_continuation.hpp"
 #include "forced_orbit.hpp"
 #include "orbit_model.hpp"
+#include "sparse_input.hpp"
 
 namespace nbm {
 namespace {
@@ -49,6 +50,33 @@ std::vector<Vector> internal_harmonics(const ContactProblem& problem,
     out.push_back(std::move(y));
   }
   return out;
+}
+
+// The assembled damping matrix in internal coordinates, checked: size, finite,
+// zero on the normal component of every contact node (the exact flow's
+// reactions do not depend on the velocities, method.md §9); tangential
+// components of a contact node are interior dofs and may be damped.
+SparseMatrix internal_damping(const ContactProblem& problem, const CooMatrix& C) {
+  const SparseMatrix user = to_sparse(C, "damping");
+  const Index N = problem.n_dofs();
+  if (user.rows() != N || user.cols() != N)
+    throw InputError("damping: size " + std::to_string(user.rows()) + "x" +
+                     std::to_string(user.cols()) + ", expected " + std::to_string(N) + "x" +
+                     std::to_string(N) + " (the number of dofs)");
+  Matrix x = problem.to_internal(user);
+  if (!x.allFinite()) throw InputError("damping: non-finite entries");
+  const double round_off = 1e-14 * x.cwiseAbs().maxCoeff();
+  for (Index j = 0; j < problem.n_contact(); ++j) {
+    const Index c = problem.contact_index()[j];
+    const double size = std::max(x.row(c).cwiseAbs().maxCoeff(), x.col(c).cwiseAbs().maxCoeff());
+    if (size > round_off)
+      throw InputError("damping: non-zero on the normal component of contact node " +
+                       std::to_string(j) + " (" + number(size) +
+                       "); forced orbits need a damping matrix that vanishes on the contact "
+                       "dofs (method.md §9)");
+    x.row(c).setZero(), x.col(c).setZero();  // round-off of a rotated node
+  }
+  return x.sparseView();
 }
 
 void check_options(const ForcedOrbitOptions& o) {
@@ -109,6 +137,8 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
   f.model->full = std::make_unique<ReducedField>(ReducedField::from(problem, f.model->F));
   f.model->shooting = true;
   f.damping.a_M = o.rayleigh_mass, f.damping.b_K = o.rayleigh_stiffness;
+  if (!o.damping.value.empty() || o.damping.rows != 0)
+    f.damping.C_user = internal_damping(problem, o.damping);
   return f;
 }
 
@@ -158,7 +188,7 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
   method.precision(12);
   method << "forced orbit: omega " << omega << ", subharmonic m = " << o.subharmonic
          << ", Rayleigh damping a_M " << o.rayleigh_mass << ", b_K " << o.rayleigh_stiffness
-         << ", " << harmonics << " load harmonic(s)\n"
+         << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", " << harmonics << " load harmonic(s)\n"
          << method_line << "\n";
   const Samples s = sample(*model, *model->forced, orbit);
   OrbitReport report = describe(model, orbit, OrbitReport{}, method.str());
@@ -205,9 +235,10 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
     out.stop_reason += " (amplitude scales relative to the factor " + number(factor) +
                        " where the branch starts)";
   const OrbitModel& model = *f.model;
+  const ExactFlow base(model.field(), f.damping, f.load);
   for (std::size_t k = 0; k < curve.points.size(); ++k) {
     const ForcedPoint& p = curve.points[k];
-    const ExactFlow flow(model.field(), f.damping, forced_load(f.load, c.parameter, p.parameter));
+    const ExactFlow flow = base.with_load(forced_load(f.load, c.parameter, p.parameter));
     const Samples s = sample(model, flow, p.orbit);
     if (k == 0) out.probe = probe_of(model.problem, s, out.probe);
     ForcedResponsePoint row;

@@ -5,8 +5,9 @@
 //
 // The excitation is the load
 //     F(t) = F0 + sum_{k=1..H} ( Fc_k cos(k omega t) + Fs_k sin(k omega t) )
-// on a damped model C = a_M M + b_K K (M the problem's mass: redistributed
-// with the massless boundary). The orbit has the period 2 pi m / omega and
+// on a damped model C = a_M M + b_K K + C_user (M the problem's mass:
+// redistributed with the massless boundary; C_user an assembled matrix that
+// vanishes on the contact dofs). The orbit has the period 2 pi m / omega and
 // no phase condition (the excitation fixes the time origin). Full interior
 // only: no reduced basis (its reduction residual would have to carry the
 // damping and the harmonic load).
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "periodic_defaults.hpp"
+#include "solver.hpp"
 #include "user_orbit.hpp"
 
 namespace nbm {
@@ -26,6 +28,9 @@ struct ForcedOrbitOptions {
   double omega = std::numeric_limits<double>::quiet_NaN();  ///< > 0, required
   int subharmonic = 1;                                       ///< m >= 1
   double rayleigh_mass = 0, rayleigh_stiffness = 0;          ///< a_M, b_K >= 0
+  /// An assembled damping matrix on the user's dofs (as NBM's damping=);
+  /// empty: none. Its flow is the state-space one (method.md §9).
+  CooMatrix damping;
   /// User dof whose amplitude is reported (any dof that is not fixed);
   /// -1: the dof of largest amplitude along the orbit.
   long probe = -1;
