@@ -96,6 +96,8 @@ nbm_bad_backbone_case(F-size [[nbmBackbone: F: size 5, expected [0-9]+]])
 nbm_bad_backbone_case(gap [[nbmBackbone: gaps: contact 0 has gap 0. a backbone from grazing needs every gap > 0]])
 nbm_bad_backbone_case(load [[nbmBackbone: F: the static state under the load closes contact]])
 nbm_bad_backbone_case(file [[nbmBackbone: cannot write /nonexistent-folder/backbone.csv]])
+nbm_bad_backbone_case(probe-range [[nbmBackbone: probe: dof 100000 out of range \[0, [0-9]+\)]])
+nbm_bad_backbone_case(probe-fixed [[nbmBackbone: probe: dof [0-9]+ is fixed]])
 
 # Forced orbits (nbmForcedOrbit): valid calls and one broken input per case.
 nbm_bad_valid(orbit-valid-forced ${NBM_ORBIT_CASES} -case valid-forced)
