@@ -3,7 +3,8 @@
 # of edp/forced-plate.edp (issue 15, item 6):
 #   docs/forced-plate.png   amplitude against forcing frequency: the continuation
 #                           (stable solid, unstable dashed, events), the sweeps
-#                           up and down, the linear response
+#                           up and down, the linear response, and the backbone
+#                           of the excited mode (edp/forced-plate-backbone.idp)
 #   docs/forced-plate.md    the summaries of the run with contact (defaults) and of
 #                           the contact-free run against the direct frequency
 #                           response (paper NBM, -contactFree 1 -mass consistent)

@@ -5,16 +5,21 @@
 //                       half = true,       // half-period shooting (false: full)
 //                       energy = Emax,     // stop past this vibration energy
 //                       iterations = 50,   // Newton iterations per orbit
-//                       table = P);        // real[int,int] n x 9, the CSV's numbers
+//                       probe = i,         // the dof of probe_amplitude (default: the
+//                                          // dof of largest amplitude at grazing)
+//                       table = P);        // real[int,int] n x 12, the CSV's numbers
 //
 // The backbone of linear mode `mode` (0: the lowest of the system with every
 // contact open) under the constant load F: its grazing orbit, then up to
 // `points` - 1 pseudo-arclength steps of `step`. Prints a summary (linear
 // frequency, grazing amplitude, why it stopped); writes one CSV row per orbit
 // ("" for no file):
-//   omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,periodicity,events
-// (energy and amplitude about the static state; events: grazing, fold-frequency,
-// fold-energy, stability; user_backbone.hpp). Returns the number of orbits.
+//   omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,periodicity,
+//   probe_amplitude,probe_min,probe_max,events
+// (energy and amplitude about the static state; probe_amplitude: (max - min) / 2
+// of u[probe] over the period, the amplitude nbmForcedResponse reports; events:
+// grazing, fold-frequency, fold-energy, stability; user_backbone.hpp). Returns
+// the number of orbits.
 #include <fstream>
 #include <iostream>
 
@@ -26,7 +31,7 @@ namespace {
 
 class Backbone : public E_F0mps {
  public:
-  static const int n_name_param = 4;
+  static const int n_name_param = 5;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, F, mode, points, step, file;
@@ -46,6 +51,7 @@ class Backbone : public E_F0mps {
     if (nargs[1]) o.max_energy = GetAny<double>((*nargs[1])(s));
     if (nargs[2]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[2])(s)));
     KNM<double>* table = nargs[3] ? GetAny<KNM<double>*>((*nargs[3])(s)) : nullptr;
+    if (nargs[4]) o.probe = GetAny<long>((*nargs[4])(s));
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
     const long j = GetAny<long>((*mode)(s));
     const string* name = GetAny<string*>((*file)(s));
@@ -55,19 +61,21 @@ class Backbone : public E_F0mps {
       if (!csv) fail(std::string(fn) + ": cannot write " + *name);
       csv.precision(12);
       csv << "omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,"
-             "periodicity,events\n";
+             "periodicity,probe_amplitude,probe_min,probe_max,events\n";
     }
     const nbm::BackboneReport r =
         guarded(fn, [&] { return nbm::backbone(solver.problem(), FF, j, o); });
     std::cout << r.summary;
     const long n = static_cast<long>(r.points.size());
-    if (table) table->resize(n, 9);
+    constexpr int columns = 12;
+    if (table) table->resize(n, columns);
     for (int k = 0; k < static_cast<int>(n); ++k) {
       const nbm::BackbonePointReport& p = r.points[k];
-      const double row[9] = {p.omega, p.period, p.energy, p.amplitude, p.contact_time,
-                             static_cast<double>(p.switches), p.max_multiplier,
-                             p.stable ? 1.0 : 0.0, p.periodicity_residual};
-      for (int c = 0; c < 9; ++c) {
+      const double row[columns] = {p.omega, p.period, p.energy, p.amplitude, p.contact_time,
+                                   static_cast<double>(p.switches), p.max_multiplier,
+                                   p.stable ? 1.0 : 0.0, p.periodicity_residual,
+                                   p.probe_amplitude, p.probe_min, p.probe_max};
+      for (int c = 0; c < columns; ++c) {
         if (table) (*table)(k, c) = row[c];
         if (csv.is_open()) csv << row[c] << ",";
       }
@@ -83,6 +91,7 @@ basicAC_F0::name_and_type Backbone::name_param[] = {
     {"energy", &typeid(double)},
     {"iterations", &typeid(long)},
     {"table", &typeid(KNM<double>*)},
+    {"probe", &typeid(long)},
 };
 
 class BackboneOp : public OneOperator {

@@ -2,12 +2,14 @@
 // the exact flow (method.md §9): the linear limit against the frequency
 // response of the full damped model, a forced bilinear oscillator against
 // brute-force time integration to steady state, and the Floquet multipliers
-// against the decay of a perturbation seen by that integration.
+// against the decay of a perturbation seen by that integration; the
+// summary's stability verdict and its criterion.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
 
 #include <Eigen/Eigenvalues>
 
@@ -16,6 +18,7 @@
 #include "forced_models.hpp"
 #include "forced_orbit.hpp"
 #include "oscillators.hpp"
+#include "periodic_orbit.hpp"
 
 namespace {
 
@@ -192,6 +195,42 @@ TEST(ForcedOrbit, AnOrbitFlaggedUnstableIsLeftByTimeIntegration) {
   const double to_large = std::min((ends[0] - xl).norm(), (ends[1] - xl).norm());
   EXPECT_LT(to_small, 2e-8);
   EXPECT_LT(to_large, 2e-8);
+}
+
+// The summary's stability verdict names the criterion that gave it: every
+// |multiplier| < 1 for a forced orbit (no trivial multiplier), every
+// |multiplier| <= 1 + margin for an autonomous one (the trivial 1 of the
+// time shift included). The orbits: the stable small orbit and the saddle
+// of the test above, and a free linear oscillation of the same oscillator
+// (undamped, unforced, below the gap: both multipliers exactly on the unit
+// circle).
+TEST(ForcedOrbit, SummaryStatesTheStabilityCriterionOfTheOrbitsKind) {
+  Bilinear b;
+  b.w = 1.3;
+  const auto field = b.oscillator().field();
+  const auto small = shoot(b, field, 1, Vector::Constant(1, 0.1), Vector::Zero(1));
+  const auto saddle = shoot(b, field, 1, Vector::Constant(1, 0.9 * std::cos(3.0)),
+                            Vector::Constant(1, -0.9 * b.w * std::sin(3.0)));
+  ASSERT_LT(std::abs(small.multipliers[0]), 1);
+  ASSERT_GT(std::abs(saddle.multipliers[0]), 1.05);
+  auto verdict = [](const nbm::PeriodicOrbit& o) {
+    const std::string s = nbm::summary(o);
+    return s.substr(s.find("\nstability ") + 1);
+  };
+  EXPECT_EQ(verdict(small),
+            "stability stable (forced orbit: every |multiplier| < 1; no trivial multiplier)\n");
+  EXPECT_EQ(verdict(saddle),
+            "stability unstable (forced orbit: a |multiplier| >= 1; no trivial multiplier)\n");
+
+  nbm::PeriodicOrbit free;
+  free.u0 = Vector::Constant(1, 0.2 * b.g), free.v0 = Vector::Zero(1);
+  free.period = 2 * M_PI / std::sqrt(b.k);
+  nbm::analyse_orbit(field, free);
+  ASSERT_TRUE(free.switches.empty());
+  for (const auto& mu : free.multipliers) ASSERT_NEAR(std::abs(mu), 1, 1e-12);
+  EXPECT_EQ(verdict(free),
+            "stability stable (autonomous orbit: every |multiplier| <= 1 + 1e-06, the trivial "
+            "multiplier 1 of the time shift included)\n");
 }
 
 TEST(ForcedOrbit, BadInputIsANamedError) {

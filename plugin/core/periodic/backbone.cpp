@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -73,6 +74,30 @@ void mark_events(std::vector<BackbonePoint>& points) {
     if (k + 1 < points.size() && turns(k, energy)) add_event(points[k].events, "fold-energy");
     if (a.stable != b.stable) add_event(points[k].events, "stability");
   }
+}
+
+// The first orbit past grazing when the first step along the linear
+// family fails, with mass on the contact nodes (method.md §6): the family
+// leaves grazing with a vertical tangent, T - T_g ~ sqrt(A - A_g), so the
+// corrector on the hyperplane across the linear direction meets that square
+// root (on the clamped plate's bending mode it fails down to step/64). The
+// tangent is the period's direction: an orbit at the fixed period
+// T_g (1 - eps) (the obstacle stiffens the system), from the linear orbit at
+// 1.1 a, for eps = 3e-3, 1e-2, 1e-3 in turn; the first with contact, or none.
+std::optional<PeriodicOrbit> vertical_start(const ReducedField& field, const GrazingOrbit& g,
+                                            ShootingOptions s) {
+  s.kind = ShootingOptions::Amplitude::period;
+  const Vector guess = g.static_state + 1.1 * (g.orbit.u0 - g.static_state);
+  for (double eps : {3e-3, 1e-2, 1e-3}) {
+    s.amplitude = g.orbit.period * (1 - eps);
+    try {
+      PeriodicOrbit o = shoot(field, guess, g.orbit.v0, s.amplitude, s);
+      if (!o.switches.empty() || o.contact_time > 0) return o;
+    } catch (const NumericalError&) {
+      // the next eps
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -165,8 +190,19 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
       double used;
       next = shortening_continuation_step(field, previous, last.orbit, shooting, c, used);
     } catch (const NumericalError& e) {
+      std::optional<PeriodicOrbit> start;
+      if (b.points.size() == 1 && !field.massless_boundary())
+        start = vertical_start(field, g, shooting);
+      if (start) {
+        previous = g.orbit;
+        b.points.push_back(point_of(field, g, std::move(*start)));
+        continue;
+      }
       b.stop_reason = "the corrector failed at step " + str(o.step / 64) + " after orbit " +
-                      std::to_string(b.points.size() - 1) + ": " + e.what();
+                      std::to_string(b.points.size() - 1) + ": " + e.what() +
+                      (b.points.size() == 1 && !field.massless_boundary()
+                           ? " (and no orbit at the fixed periods of the vertical start)"
+                           : "");
       break;
     }
     previous = last.orbit;

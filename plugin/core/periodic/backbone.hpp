@@ -57,7 +57,10 @@ struct Backbone {
 /// continuation (continuation.hpp) whose first secant is the linear family's
 /// direction (from the same mode's orbit at half the grazing amplitude, an
 /// exact orbit of the affine linear family): beyond grazing the orbits
-/// leave the linear family, which penetrates the obstacle. Ends after
+/// leave the linear family, which penetrates the obstacle. With mass on the
+/// contact nodes, if that first step fails, the first orbit past grazing is
+/// sought at fixed periods just below the linear one (the vertical start,
+/// backbone.cpp; method.md §6). Ends after
 /// options.points orbits, past options.max_energy, when the corrector fails
 /// at step/64 or at an orbit without contact (no switch, no closed contact:
 /// the family went back to the linear system); stop_reason says which. Throws as grazing_orbit, and

@@ -59,6 +59,24 @@ std::vector<double> to_std(const Vector& x);
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
                         const std::string& name);
 
+/// An orbit of `model` sampled over one period along `flow` (the model's
+/// own, or a forced one), 512 times uniformly and at every switch (where a
+/// contact closes or opens the motion has its kinks): the extremes of every
+/// user dof and the largest total energy. The amplitude of a user dof i is
+/// (hi(i) - lo(i)) / 2, for forced orbits and backbones alike.
+struct OrbitSamples {
+  Vector lo, hi;
+  double energy_max = 0;
+};
+OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
+                          const PeriodicOrbit& orbit);
+/// Checks the user dof of a reported amplitude: InputError naming "probe"
+/// if it is out of range or fixed (-1, "choose the largest", passes).
+void check_amplitude_probe(const ContactProblem& problem, long probe);
+/// The probe asked for, or with -1 the (not fixed) dof of largest amplitude
+/// in `s`.
+long amplitude_probe(const ContactProblem& problem, const OrbitSamples& s, long probe);
+
 /// The report of an orbit found on `model`; `method` opens its summary.
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
                      OrbitReport report, const std::string& method);

@@ -74,10 +74,11 @@ void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous)
   if (any_closed(current)) orbit.contact_time += T - t_prev;
 
   orbit.monodromy = r.monodromy;
+  orbit.autonomous = autonomous;
   if (autonomous) {
     orbit.multipliers = floquet_multipliers(r.monodromy, orbit.v0, field.acceleration(orbit.u0),
                                             orbit.trivial_residual);
-    orbit.stable = std::abs(orbit.multipliers.front()) <= 1 + 1e-6;
+    orbit.stable = std::abs(orbit.multipliers.front()) <= 1 + kAutonomousStabilityMargin;
     return;
   }
   // Forced: no time shift leaves the orbit invariant, so no trivial
@@ -106,7 +107,17 @@ std::string summary(const PeriodicOrbit& orbit) {
   for (std::size_t k = 0; k < std::min<std::size_t>(6, orbit.multipliers.size()); ++k)
     s << " " << orbit.multipliers[k].real() << (orbit.multipliers[k].imag() >= 0 ? "+" : "")
       << orbit.multipliers[k].imag() << "i";
-  s << "\nstability " << (orbit.stable ? "stable (all |multipliers| <= 1)" : "unstable") << "\n";
+  // The verdict with the criterion that gave it: they differ for autonomous
+  // and forced orbits (analyse_orbit).
+  s << "\nstability ";
+  if (orbit.autonomous)
+    s << (orbit.stable ? "stable (autonomous orbit: every |multiplier| <= 1 + "
+                       : "unstable (autonomous orbit: a |multiplier| > 1 + ")
+      << kAutonomousStabilityMargin << ", the trivial multiplier 1 of the time shift included)";
+  else
+    s << (orbit.stable ? "stable (forced orbit: every |multiplier| < 1; no trivial multiplier)"
+                       : "unstable (forced orbit: a |multiplier| >= 1; no trivial multiplier)");
+  s << "\n";
   return s.str();
 }
 

@@ -32,8 +32,17 @@ struct PeriodicOrbit {
   /// |X f - f| / |f| for the vector field f at the start: how exactly the
   /// trivial multiplier 1 holds.
   double trivial_residual = 0;
-  bool stable = false;            ///< all |multipliers| <= 1 + 1e-6
+  /// Which stability criterion applied (analyse_orbit): an autonomous
+  /// orbit's, every |multiplier| <= 1 + kAutonomousStabilityMargin (the
+  /// trivial multiplier 1 split off), or a forced orbit's, every
+  /// |multiplier| < 1 (time is not free: no trivial multiplier).
+  bool autonomous = true;
+  bool stable = false;
 };
+
+/// Round-off allowed above 1 in the multipliers of a stable autonomous
+/// orbit: undamped, its multipliers lie on the unit circle.
+constexpr double kAutonomousStabilityMargin = 1e-6;
 
 /// Eigenvalues of the monodromy X of an autonomous orbit starting at
 /// (u0, v0) with acceleration a0: the trivial multiplier 1 (eigenvector
@@ -47,12 +56,13 @@ std::vector<std::complex<double>> floquet_multipliers(const Matrix& monodromy, c
 void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit);
 /// The same along a given flow (damped, forced: exact_flow.hpp) from its
 /// time 0. An autonomous orbit gets the trivial multiplier 1 and is stable
-/// if all |multipliers| <= 1 + 1e-6; a forced one (time is not free,
+/// if all |multipliers| <= 1 + kAutonomousStabilityMargin; a forced one (time is not free,
 /// method.md §9) gets the eigenvalues of the monodromy, no trivial
 /// multiplier, trivial_residual 0, and is stable if all |multipliers| < 1.
 void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous);
 
-/// A line per quantity: period, energy, contact time, residuals, multipliers.
+/// A line per quantity: period, energy, contact time, residuals, multipliers,
+/// and the stability verdict with the criterion it used (autonomous or forced).
 std::string summary(const PeriodicOrbit& orbit);
 
 }  // namespace nbm

@@ -19,8 +19,13 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
     throw InputError("the model has " + std::to_string(interior) +
                      " interior dofs; backbones use dense matrices and accept at most " +
                      std::to_string(periodic_max_dense_dofs) + " (use a coarser mesh)");
-  const ReducedField field = ReducedField::from(problem, problem.to_internal(FF));
+  check_amplitude_probe(problem, options.probe);
+  OrbitModel model(problem);
+  model.F = problem.to_internal(FF);
+  model.full = std::make_unique<ReducedField>(ReducedField::from(problem, model.F));
+  const ReducedField& field = model.field();
   const Backbone b = backbone(field, mode, options);
+  const ExactFlow flow(field);
 
   BackboneReport r;
   r.linear_omega = b.grazing.omega;
@@ -28,7 +33,11 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   r.grazing_contact = b.grazing.contact;
   r.stop_reason = b.stop_reason;
   for (const BackbonePoint& p : b.points) {
+    const OrbitSamples samples = sample_orbit(model, flow, p.orbit);
+    if (r.points.empty()) r.probe = amplitude_probe(problem, samples, options.probe);
     BackbonePointReport q;
+    q.probe_min = samples.lo(r.probe), q.probe_max = samples.hi(r.probe);
+    q.probe_amplitude = 0.5 * (q.probe_max - q.probe_min);
     q.period = p.orbit.period;
     q.omega = 2 * M_PI / q.period;
     q.energy = p.energy;
@@ -54,6 +63,8 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
     << "grazing: contact " << r.grazing_contact << " (position in the contact list), modal "
     << "amplitude " << r.grazing_amplitude << ", amplitude " << first.amplitude << ", energy "
     << first.energy << "\n"
+    << "probe dof " << r.probe << ": amplitude " << first.probe_amplitude << " at grazing, "
+    << last.probe_amplitude << " at the last orbit\n"
     << r.points.size() << " orbits; last: omega " << last.omega << " (" << last.omega / first.omega
     << " x linear), energy " << last.energy << ", amplitude " << last.amplitude
     << ", contact time " << last.contact_time << " (" << last.contact_time / last.period

@@ -26,6 +26,11 @@ struct BackboneOptions {
   /// Stop after the first orbit whose vibration energy exceeds this.
   double max_energy = std::numeric_limits<double>::infinity();
   int max_iterations = periodic_max_iterations;
+  /// User dof whose amplitude (max - min) / 2 over the period is reported
+  /// at every orbit, as for forced orbits (user_forced_orbit.hpp): any dof
+  /// that is not fixed; -1: the dof of largest amplitude along the grazing
+  /// orbit, kept along the backbone.
+  long probe = -1;
 };
 
 /// One orbit of a backbone and its monitors.
@@ -38,6 +43,10 @@ struct BackbonePointReport {
   /// max over the interior dofs of |u(0) - u_static| (t = 0: the turning
   /// point away from the obstacle, where the orbit is at rest).
   double amplitude = 0;
+  /// Extremes of the probe dof over the period (the exact flow sampled 512
+  /// times and at every switch) and probe_amplitude = (max - min) / 2: the
+  /// amplitude a forced response reports (ForcedResponsePoint::amplitude).
+  double probe_min = 0, probe_max = 0, probe_amplitude = 0;
   double contact_time = 0;
   long switches = 0;  ///< contact switches per period
   std::vector<double> multipliers_re, multipliers_im;  ///< by decreasing modulus
@@ -55,6 +64,7 @@ struct BackboneReport {
   double linear_omega = 0;      ///< omega_j of the open (linear) system
   double grazing_amplitude = 0; ///< modal amplitude a of the grazing orbit
   long grazing_contact = -1;    ///< the contact node (position in the contact list) that grazes
+  long probe = -1;              ///< the user dof of probe_amplitude
   std::vector<BackbonePointReport> points;
   std::string stop_reason;
   std::string summary;
@@ -65,7 +75,7 @@ struct BackboneReport {
 /// `problem` under the constant load F (user vector), from its grazing orbit
 /// (backbone.hpp, method.md §6). Throws InputError naming the argument
 /// (mode out of range or rigid, no contact, a gap <= 0, a load that closes
-/// a contact at rest, bad options), NumericalError if the grazing orbit
+/// a contact at rest, bad options, a probe out of range or fixed), NumericalError if the grazing orbit
 /// cannot be analysed; a corrector failure along the backbone ends it
 /// (stop_reason).
 BackboneReport backbone(const ContactProblem& problem, const std::vector<double>& F, long mode,

@@ -14,8 +14,6 @@
 namespace nbm {
 namespace {
 
-constexpr int kAmplitudeSamples = 512;
-
 std::string number(double x) {
   std::ostringstream s;
   s.precision(6);
@@ -119,13 +117,7 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
   if (f.load.harmonics() == 0)
     throw InputError("Fc, Fs: no load harmonic; expected at least one (without excitation the "
                      "damped model's only periodic orbit is its equilibrium)");
-  if (o.probe >= 0) {
-    if (o.probe >= N)
-      throw InputError("probe: dof " + std::to_string(o.probe) + " out of range [0, " +
-                       std::to_string(N) + ")");
-    if (problem.internal_index(o.probe) < 0)
-      throw InputError("probe: dof " + std::to_string(o.probe) + " is fixed");
-  }
+  check_amplitude_probe(problem, o.probe);
   const Index interior = problem.size() - problem.n_contact();
   if (interior > periodic_max_dense_dofs)
     throw InputError("the model has " + std::to_string(interior) +
@@ -142,44 +134,6 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
   return f;
 }
 
-// The orbit sampled over one period along `flow`, uniformly and at every
-// switch (where a contact closes or opens the motion has its kinks): the
-// extremes of every user dof and the largest total energy.
-struct Samples {
-  Vector lo, hi;
-  double energy_max = 0;
-};
-
-Samples sample(const OrbitModel& model, const ExactFlow& flow, const PeriodicOrbit& orbit) {
-  std::vector<double> times;
-  for (int k = 0; k < kAmplitudeSamples; ++k) times.push_back(orbit.period * k / kAmplitudeSamples);
-  for (const SwitchEvent& e : orbit.switches) times.push_back(e.t);
-  std::sort(times.begin(), times.end());
-  const ReducedField& field = model.field();
-  const FlowResult r = flow.integrate(orbit.u0, orbit.v0, orbit.period, false, times);
-  const Index n = field.size(), N = model.problem.n_dofs();
-  Samples s;
-  s.lo = Vector::Constant(N, INFINITY), s.hi = Vector::Constant(N, -INFINITY);
-  for (Index k = 0; k < r.samples.cols(); ++k) {
-    const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);
-    const Vector user = model.user(uk);
-    s.lo = s.lo.cwiseMin(user), s.hi = s.hi.cwiseMax(user);
-    s.energy_max = std::max(
-        s.energy_max, field.energies(uk, vk)(3));
-  }
-  return s;
-}
-
-// The probe: the one asked for, or the (not fixed) dof of largest amplitude.
-long probe_of(const ContactProblem& problem, const Samples& s, long probe) {
-  if (probe >= 0) return probe;
-  double best = -1;
-  for (Index i = 0; i < problem.n_dofs(); ++i)
-    if (problem.internal_index(i) >= 0 && s.hi(i) - s.lo(i) > best)
-      best = s.hi(i) - s.lo(i), probe = i;
-  return probe;
-}
-
 // The report of a forced orbit of `model` (whose `forced` flow it follows).
 OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit& orbit,
                           const ForcedOrbitOptions& o, double omega, int harmonics,
@@ -190,12 +144,12 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
          << ", Rayleigh damping a_M " << o.rayleigh_mass << ", b_K " << o.rayleigh_stiffness
          << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", " << harmonics << " load harmonic(s)\n"
          << method_line << "\n";
-  const Samples s = sample(*model, *model->forced, orbit);
+  const OrbitSamples s = sample_orbit(*model, *model->forced, orbit);
   OrbitReport report = describe(model, orbit, OrbitReport{}, method.str());
   report.omega = omega;
   report.subharmonic = o.subharmonic;
   report.energy_max = s.energy_max;
-  report.probe = probe_of(model->problem, s, o.probe);
+  report.probe = amplitude_probe(model->problem, s, o.probe);
   report.probe_min = s.lo(report.probe), report.probe_max = s.hi(report.probe);
   report.amplitude = 0.5 * (report.probe_max - report.probe_min);
   std::ostringstream probe;
@@ -239,8 +193,8 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
   for (std::size_t k = 0; k < curve.points.size(); ++k) {
     const ForcedPoint& p = curve.points[k];
     const ExactFlow flow = base.with_load(forced_load(f.load, c.parameter, p.parameter));
-    const Samples s = sample(model, flow, p.orbit);
-    if (k == 0) out.probe = probe_of(model.problem, s, out.probe);
+    const OrbitSamples s = sample_orbit(model, flow, p.orbit);
+    if (k == 0) out.probe = amplitude_probe(model.problem, s, out.probe);
     ForcedResponsePoint row;
     row.omega = p.omega, row.scale = factor * p.scale, row.arclength = p.arclength;
     row.probe_min = s.lo(out.probe), row.probe_max = s.hi(out.probe);

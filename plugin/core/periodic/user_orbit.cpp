@@ -47,6 +47,45 @@ Index interior_position(const ContactProblem& p, const ReducedField& field, long
   return it - in.begin();
 }
 
+OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
+                          const PeriodicOrbit& orbit) {
+  constexpr int kSamples = 512;
+  std::vector<double> times;
+  for (int k = 0; k < kSamples; ++k) times.push_back(orbit.period * k / kSamples);
+  for (const SwitchEvent& e : orbit.switches) times.push_back(e.t);
+  std::sort(times.begin(), times.end());
+  const ReducedField& field = model.field();
+  const FlowResult r = flow.integrate(orbit.u0, orbit.v0, orbit.period, false, times);
+  const Index n = field.size(), N = model.problem.n_dofs();
+  OrbitSamples s;
+  s.lo = Vector::Constant(N, INFINITY), s.hi = Vector::Constant(N, -INFINITY);
+  for (Index k = 0; k < r.samples.cols(); ++k) {
+    const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);
+    const Vector user = model.user(uk);
+    s.lo = s.lo.cwiseMin(user), s.hi = s.hi.cwiseMax(user);
+    s.energy_max = std::max(s.energy_max, field.energies(uk, vk)(3));
+  }
+  return s;
+}
+
+void check_amplitude_probe(const ContactProblem& problem, long probe) {
+  if (probe < 0) return;
+  if (probe >= problem.n_dofs())
+    throw InputError("probe: dof " + std::to_string(probe) + " out of range [0, " +
+                     std::to_string(problem.n_dofs()) + ")");
+  if (problem.internal_index(probe) < 0)
+    throw InputError("probe: dof " + std::to_string(probe) + " is fixed");
+}
+
+long amplitude_probe(const ContactProblem& problem, const OrbitSamples& s, long probe) {
+  if (probe >= 0) return probe;
+  double best = -1;
+  for (Index i = 0; i < problem.n_dofs(); ++i)
+    if (problem.internal_index(i) >= 0 && s.hi(i) - s.lo(i) > best)
+      best = s.hi(i) - s.lo(i), probe = i;
+  return probe;
+}
+
 OrbitModel::OrbitModel(const ContactProblem& p) : problem(p) {
   std::vector<char> is_contact(p.size(), 0);
   for (Index c : p.contact_index()) is_contact[c] = 1;
