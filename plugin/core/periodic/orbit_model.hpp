@@ -11,6 +11,7 @@
 
 #include "contact_problem.hpp"
 #include "exact_flow.hpp"
+#include "harmonic_balance.hpp"
 #include "periodic_orbit.hpp"
 #include "reduced_basis.hpp"
 #include "reduced_field.hpp"
@@ -58,6 +59,11 @@ std::vector<double> to_std(const Vector& x);
 /// range, fixed or the normal component of a contact node.
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
                         const std::string& name);
+
+/// The harmonic-balance fields of a report from a series on `model`:
+/// harmonics, Galerkin residual, truncation estimate, and the coefficients
+/// in user coordinates (the slaved contact normal components left at zero).
+void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, OrbitReport& report);
 
 /// The report of an orbit found on `model`; `method` opens its summary.
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
