@@ -1,5 +1,6 @@
 // Forced periodic orbits on the user's dofs (method.md §9): the front end of
-// shoot_forced (forced_orbit.hpp) for the FreeFEM binding, reporting like the
+// shoot_forced (forced_orbit.hpp) and forced_harmonic_balance
+// (forced_harmonic_balance.hpp) for the FreeFEM binding, reporting like the
 // autonomous front end (user_orbit.hpp, OrbitReport). Free of Eigen and
 // FreeFEM types.
 //
