@@ -33,7 +33,9 @@
 //              probe = dof,                    // amplitude of this dof (default:
 //                                              // the dof of largest amplitude)
 //              transient = 0,                  // periods run from the guess first
-//              iterations = 50);
+//              iterations = 50,
+//              method = "shooting",            // or "harmonic-balance" (exact
+//              harmonics = 20);                // integration, H harmonics of omega / m)
 //   // Fc, Fs: real[int,int] ndof x H (column k-1: harmonic k; either may have
 //   // fewer columns, even 0) or real[int] of size ndof (one harmonic, or size 0:
 //   // none). They must vanish on the contact dofs. u, v hold the orbit's state
@@ -42,7 +44,10 @@
 //   // functions above read the last forced orbit too (no trivial multiplier:
 //   // stable iff all |mu| < 1); nbmContinueOrbit refuses it. Full interior
 //   // only (no modes=). With mass = "redistributed", aM multiplies the
-//   // redistributed mass, as in the time steppers.
+//   // redistributed mass, as in the time steppers. Harmonic balance starts
+//   // from the Fourier series of the exact flow from (u, v) and reports like
+//   // nbmPeriodicOrbit's (nbmOrbitHarmonics; nbmOrbitResiduals: Galerkin
+//   // residual, truncation); u, v get the series' state at t = 0.
 //   int n = nbmForcedResponse(S, F0, Fc, Fs, omega, u, v,  // the forced orbit as above,
 //              (the named arguments of nbmForcedOrbit),   // then its response curve
 //              parameter = "omega",            // or "amplitude": a factor on Fc, Fs (1 at start)
@@ -257,7 +262,7 @@ class ForcedOp : public OneOperator {
 template <class H>
 class ForcedOrbit : public ForcedCall<H> {
  public:
-  static const int n_name_param = 6;
+  static const int n_name_param = 8;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -267,7 +272,9 @@ class ForcedOrbit : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedOrbit";
-    const ForcedInputs in = this->gather(s, nargs, fn);
+    ForcedInputs in = this->gather(s, nargs, fn);
+    if (nargs[6]) in.options.method = *GetAny<string*>((*nargs[6])(s));
+    if (nargs[7]) in.options.harmonics = static_cast<int>(GetAny<long>((*nargs[7])(s)));
     auto report = guarded(fn, [&] {
       return nbm::forced_orbit(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
                                in.options);
@@ -282,6 +289,7 @@ basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
     {"rayleighM", &typeid(double)}, {"rayleighK", &typeid(double)},
     {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
     {"transient", &typeid(long)},   {"iterations", &typeid(long)},
+    {"method", &typeid(string*)},   {"harmonics", &typeid(long)},
 };
 
 // nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments

@@ -51,9 +51,12 @@ struct ForcedBar {
 // to u = P u_O + e, the tip following (K u)_N = F_N (method.md §3), so the
 // steady response is u_O = Re(X e^{i w t}) + static part with
 // P^T (K - w^2 M + i w C) P X = P^T (Fc - i Fs), C = a_M M + b_K K.
-TEST(UserForcedOrbit, LinearLimitIsTheDampedFrequencyResponseOnUserDofs) {
-  ForcedBar b;
-  const auto r = b.solve();
+// Dofs 1..N of the bar (dof 0 is clamped).
+struct BarResponse {
+  Vector us, u, v;    // static part, u(0), v(0)
+  Eigen::VectorXcd X;
+};
+BarResponse bar_reference(const ForcedBar& b) {
   nbm::SparseMatrix Ms, Ks;
   b.bar.assemble(Ms, Ks);
   const int N = b.bar.N, n = N - 1;  // interior dofs 1..N-1
@@ -66,15 +69,26 @@ TEST(UserForcedOrbit, LinearLimitIsTheDampedFrequencyResponseOnUserDofs) {
   // Static part: u = P u_O + e with e the tip's response to F0 alone.
   Vector e = Vector::Zero(N);
   e(n) = F0(n) / K(n, n);
-  const Vector us = P * (P.transpose() * K * P).ldlt().solve(P.transpose() * (F0 - K * e)) + e;
+  BarResponse r;
+  r.us = P * (P.transpose() * K * P).ldlt().solve(P.transpose() * (F0 - K * e)) + e;
   const double w = b.o.omega;
   const Matrix C = b.o.rayleigh_mass * M + b.o.rayleigh_stiffness * K;
   const Eigen::MatrixXcd Z = (P.transpose() * (K - w * w * M) * P).cast<Complex>() +
                              Complex(0, w) * (P.transpose() * C * P).cast<Complex>();
-  const Eigen::VectorXcd X =
-      P.cast<Complex>() * Z.partialPivLu().solve(P.transpose().cast<Complex>() *
-                                                 (Fc.cast<Complex>() - Complex(0, 1) * Fs.cast<Complex>()));
-  const Vector u_ref = us + X.real(), v_ref = (Complex(0, w) * X).real();
+  r.X = P.cast<Complex>() * Z.partialPivLu().solve(P.transpose().cast<Complex>() *
+                                                   (Fc.cast<Complex>() - Complex(0, 1) * Fs.cast<Complex>()));
+  r.u = r.us + r.X.real(), r.v = (Complex(0, w) * r.X).real();
+  return r;
+}
+
+TEST(UserForcedOrbit, LinearLimitIsTheDampedFrequencyResponseOnUserDofs) {
+  ForcedBar b;
+  const auto r = b.solve();
+  const BarResponse ref = bar_reference(b);
+  const int N = b.bar.N;
+  const double w = b.o.omega;
+  const Vector &u_ref = ref.u, &v_ref = ref.v, &us = ref.us;
+  const Eigen::VectorXcd& X = ref.X;
   ASSERT_EQ(r.u0.size(), static_cast<std::size_t>(N + 1));
   EXPECT_EQ(r.u0[0], 0.0);
   const double us_scale = u_ref.cwiseAbs().maxCoeff(), vs_scale = v_ref.cwiseAbs().maxCoeff();
@@ -101,6 +115,32 @@ TEST(UserForcedOrbit, LinearLimitIsTheDampedFrequencyResponseOnUserDofs) {
   std::vector<std::vector<double>> us_t, vs_t;
   nbm::orbit_states(r, {r.period}, us_t, vs_t);
   for (int i = 0; i <= N; ++i) EXPECT_NEAR(us_t[0][i], r.u0[i], 1e-10 * us_scale);
+}
+
+// Harmonic balance through the front end: one harmonic is the frequency
+// response (the series' coefficients on user dofs: a_1 = Re X, b_1 = -Im X).
+TEST(UserForcedOrbit, HarmonicBalanceOfTheLinearBarIsItsFrequencyResponse) {
+  ForcedBar b;
+  b.o.method = "harmonic-balance";
+  b.o.harmonics = 1;
+  const auto r = b.solve();
+  const BarResponse ref = bar_reference(b);
+  const int N = b.bar.N;
+  const double us_scale = ref.u.cwiseAbs().maxCoeff(), vs_scale = ref.v.cwiseAbs().maxCoeff();
+  ASSERT_EQ(r.harmonics, 1);
+  ASSERT_EQ(r.coefficients.size(), static_cast<std::size_t>(3 * (N + 1)));
+  for (int i = 0; i < N; ++i) {
+    EXPECT_NEAR(r.u0[i + 1], ref.u(i), 1e-10 * us_scale) << i;
+    EXPECT_NEAR(r.v0[i + 1], ref.v(i), 1e-10 * vs_scale) << i;
+    if (i + 1 == N) continue;  // the contact dof: slaved, its coefficients left at zero
+    EXPECT_NEAR(r.coefficients[3 * (i + 1) + 1], ref.X(i).real(), 1e-10 * us_scale) << i;
+    EXPECT_NEAR(r.coefficients[3 * (i + 1) + 2], -ref.X(i).imag(), 1e-10 * us_scale) << i;
+  }
+  EXPECT_LE(r.balance_residual, 1e-12);
+  EXPECT_LE(r.truncation, 1e-12);
+  EXPECT_LE(r.periodicity_residual, 1e-12);
+  EXPECT_TRUE(r.stable);
+  EXPECT_NE(r.summary.find("method harmonic balance"), std::string::npos);
 }
 
 TEST(UserForcedOrbit, SubharmonicOfALinearOrbitIsTheHarmonicOrbit) {
@@ -249,6 +289,12 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   with([](ForcedBar& c) { c.Fs.pop_back(); }, "Fs (harmonic 1): size 12, expected 13");
   with([](ForcedBar& c) { c.Fs[3] = NAN; }, "Fs (harmonic 1): non-finite");
   with([](ForcedBar& c) { c.F0.push_back(0); }, "F0: size 14, expected 13");
+  with([](ForcedBar& c) { c.o.method = "newton"; },
+       "method: \"newton\"; expected \"shooting\" or \"harmonic-balance\"");
+  with([](ForcedBar& c) { c.o.method = "harmonic-balance", c.o.harmonics = 0; },
+       "harmonics: 0; expected m .. 320");
+  with([](ForcedBar& c) { c.o.method = "harmonic-balance", c.o.subharmonic = 3, c.o.harmonics = 2; },
+       "harmonics: 2; expected m .. 320 (m = 3");
   expect_input_error(
       [&] { nbm::forced_orbit(*b.problem, b.F0, {}, {}, b.zero, b.zero, b.o); },
       "Fc, Fs: no load harmonic");
@@ -280,6 +326,11 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   response(r, "doublingAmplitude: expected a finite amplitude > 0");
   r.doubling_amplitude = 1e-3;
   response(r, "doubling: no period doubling on the curve (3 points, 0 events");
+  r.doubling = false;
+  r.max_points = 5;
+  b.o.method = "harmonic-balance";
+  response(r, "method: \"harmonic-balance\"; the continuation of forced orbits corrects by shooting");
+  b.o.method = "shooting";
   // Autonomous continuation refuses forced orbits.
   const auto orbit = b.solve();
   expect_input_error([&] { nbm::continue_orbit(orbit, orbit, 0.1); },

@@ -128,6 +128,11 @@ nbm_bad_orbit_case(forced-transient [[nbmForcedOrbit: transient: expected a numb
 nbm_bad_orbit_case(forced-iterations [[nbmForcedOrbit: iterations: expected >= 1]])
 nbm_bad_orbit_case(forced-same-array [[nbmForcedOrbit: u and v must be different arrays]])
 nbm_bad_orbit_case(forced-no-convergence [[nbmForcedOrbit: forced orbit: no convergence in 1 Newton iteration]])
+nbm_bad_valid(orbit-valid-forced-hbm ${NBM_ORBIT_CASES} -case valid-forced-hbm)
+nbm_bad_orbit_case(forced-method [[nbmForcedOrbit: method: "newton".*expected "shooting" or "harmonic-balance"]])
+nbm_bad_orbit_case(forced-harmonics [[nbmForcedOrbit: harmonics: 0.*expected m .. 320]])
+nbm_bad_orbit_case(forced-harmonics-subharmonic [[nbmForcedOrbit: harmonics: 1.*expected m .. 320 \(m = 2]])
+nbm_bad_orbit_case(forced-hbm-no-convergence [[nbmForcedOrbit: forced harmonic balance: no convergence in 1 Newton iteration]])
 nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: damping: non-zero on the normal component of contact node 0]])
 nbm_bad_orbit_case(forced-amplitude-autonomous [[nbmOrbitAmplitude: the last orbit is not a forced orbit]])
 nbm_bad_orbit_case(forced-continue [[nbmContinueOrbit: continuation follows autonomous orbits]])
@@ -190,3 +195,15 @@ nbm_summary_test(forced-plate-damping-matrix-curve
 nbm_summary_test(forced-plate-curve
   "folds>=2 foldCheckUp<=0.011 foldCheckDown<=0.011 arcPeriodicity<=1e-10 arcEnd>=1.399 arcUnstable>=1 periodicity<=1e-10 backboneLinearOffset<=0.006 branchPoints>=10 branchLow<=1.02 leanPeak<=0.005 leanFold<=0.005"
   ${FORCED_PLATE} -out forced-curve -settle 0)
+# Shooting and harmonic balance agree on the curve (-hbmCheck): five orbits
+# with contact on the upper branch, omega ratio 0.96 .. 1.16 (the last
+# unstable), each found by shooting and recomputed by forced harmonic balance
+# at H = 40 from it. The truncation measure of the series (the periodicity
+# residual of the exact flow from its state) is 3.4e-4 .. 1.0e-3 there and
+# the state difference tracks it (ratio 0.95 .. 1.1; amplitudes agree to
+# 1.7e-6), so the bound is twice the largest truncation measure and the
+# ratio must stay below 1.5; the stability of the two must agree everywhere.
+# About 35 s of CPU.
+nbm_summary_test(forced-plate-hbm
+  "hbmPoints>=5 hbmContact>=5 hbmDifference<=2e-3 hbmStateOverPeriodicity<=1.5 hbmStabilityMismatch<=0"
+  ${FORCED_PLATE} -out forced-hbm -points 0 -down 0 -arclength 0 -settle 0 -hbmCheck 5 -from 0.96 -to 1.16)

@@ -18,7 +18,9 @@
 // Unknowns: the coefficients and omega. Conditions closing the system: the
 // phase (v_O[probe](0) = 0; implied by the cosine-only option for orbits even
 // in time, i.e. through a state at rest at t = 0) and the amplitude
-// condition of shooting.hpp.
+// condition of shooting.hpp. The Galerkin machinery (basis, exact weights,
+// residual, Jacobian) is trig_galerkin.hpp's, shared with the forced
+// solver (forced_harmonic_balance.hpp).
 #pragma once
 
 #include "periodic_orbit.hpp"

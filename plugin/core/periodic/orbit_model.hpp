@@ -11,6 +11,7 @@
 
 #include "contact_problem.hpp"
 #include "exact_flow.hpp"
+#include "harmonic_balance.hpp"
 #include "periodic_orbit.hpp"
 #include "reduced_basis.hpp"
 #include "reduced_field.hpp"
@@ -76,6 +77,10 @@ void check_amplitude_probe(const ContactProblem& problem, long probe);
 /// The probe asked for, or with -1 the (not fixed) dof of largest amplitude
 /// in `s`.
 long amplitude_probe(const ContactProblem& problem, const OrbitSamples& s, long probe);
+/// The harmonic-balance fields of a report from a series on `model`:
+/// harmonics, Galerkin residual, truncation estimate, and the coefficients
+/// in user coordinates (the slaved contact normal components left at zero).
+void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, OrbitReport& report);
 
 /// The report of an orbit found on `model`; `method` opens its summary.
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,

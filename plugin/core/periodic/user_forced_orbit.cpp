@@ -7,6 +7,7 @@
 
 #include "errors.hpp"
 #include "forced_continuation.hpp"
+#include "forced_harmonic_balance.hpp"
 #include "forced_orbit.hpp"
 #include "orbit_model.hpp"
 #include "sparse_input.hpp"
@@ -94,6 +95,12 @@ void check_options(const ForcedOrbitOptions& o) {
     throw InputError("transient: expected a number of periods >= 0, got " +
                      std::to_string(o.transient_periods));
   if (o.max_iterations < 1) throw InputError("iterations: expected >= 1");
+  if (o.method != "shooting" && o.method != "harmonic-balance")
+    throw InputError("method: \"" + o.method + "\"; expected \"shooting\" or \"harmonic-balance\"");
+  if (o.method == "harmonic-balance" && (o.harmonics < o.subharmonic || o.harmonics > 320))
+    throw InputError("harmonics: " + std::to_string(o.harmonics) + "; expected m .. 320 (m = " +
+                     std::to_string(o.subharmonic) +
+                     ", the subharmonic: the load's first harmonic is the series' m-th)");
 }
 
 // The model of a forced orbit: the field of the user's F0, the damping and
@@ -134,10 +141,11 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
   return f;
 }
 
-// The report of a forced orbit of `model` (whose `forced` flow it follows).
+// The report of a forced orbit of `model` (whose `forced` flow it follows),
+// on `report`'s method-specific fields.
 OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit& orbit,
                           const ForcedOrbitOptions& o, double omega, int harmonics,
-                          const std::string& method_line) {
+                          const std::string& method_line, OrbitReport report = {}) {
   std::ostringstream method;
   method.precision(12);
   method << "forced orbit: omega " << omega << ", subharmonic m = " << o.subharmonic
@@ -145,7 +153,7 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
          << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", " << harmonics << " load harmonic(s)\n"
          << method_line << "\n";
   const OrbitSamples s = sample_orbit(*model, *model->forced, orbit);
-  OrbitReport report = describe(model, orbit, OrbitReport{}, method.str());
+  report = describe(model, orbit, std::move(report), method.str());
   report.omega = omega;
   report.subharmonic = o.subharmonic;
   report.energy_max = s.energy_max;
@@ -307,12 +315,31 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
   const Index N = problem.n_dofs();
   const Vector uu = user_vector(u, N, "u"), vv = user_vector(v, N, "v");
   f.model->forced = std::make_unique<ExactFlow>(f.model->field(), f.damping, f.load);
+  const Vector u0 = f.model->unknowns(uu), v0 = f.model->unknowns(vv);
+  if (o.method == "harmonic-balance") {
+    ForcedHarmonicBalanceOptions h;
+    h.subharmonic = o.subharmonic;
+    h.harmonics = o.harmonics;
+    h.max_iterations = o.max_iterations;
+    h.transient_periods = o.transient_periods;
+    const HarmonicBalanceResult r = forced_harmonic_balance(*f.model->forced, u0, v0, h);
+    f.model->shooting = false;
+    OrbitReport report;
+    report_series(*f.model, r, report);
+    std::ostringstream line;
+    line.precision(3);
+    line << "method harmonic balance (period fixed by the excitation, exact integration), H = "
+         << r.harmonics << " harmonics of omega / m\nGalerkin residual " << r.residual
+         << ", truncation estimate " << r.truncation
+         << " (the state's periodicity residual on the exact flow below measures it too)";
+    return forced_report(f.model, r.orbit, o, o.omega, f.load.harmonics(), line.str(),
+                         std::move(report));
+  }
   ForcedShootingOptions s;
   s.subharmonic = o.subharmonic;
   s.max_iterations = o.max_iterations;
   s.transient_periods = o.transient_periods;
-  const PeriodicOrbit orbit =
-      shoot_forced(*f.model->forced, f.model->unknowns(uu), f.model->unknowns(vv), s);
+  const PeriodicOrbit orbit = shoot_forced(*f.model->forced, u0, v0, s);
   return forced_report(f.model, orbit, o, o.omega, f.load.harmonics(),
                        "method shooting (period fixed by the excitation, exact flow)");
 }
@@ -326,6 +353,9 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
   const Index N = problem.n_dofs();
   const Vector uu = user_vector(u, N, "u"), vv = user_vector(v, N, "v");
   ForcedContinuationOptions c;
+  if (o.method != "shooting")
+    throw InputError("method: \"" + o.method + "\"; the continuation of forced orbits "
+                     "corrects by shooting (expected \"shooting\")");
   if (r.parameter != "omega" && r.parameter != "amplitude")
     throw InputError("parameter: \"" + r.parameter + "\"; expected \"omega\" or \"amplitude\"");
   const bool frequency = r.parameter == "omega";

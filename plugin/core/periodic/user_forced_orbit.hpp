@@ -1,5 +1,6 @@
 // Forced periodic orbits on the user's dofs (method.md §9): the front end of
-// shoot_forced (forced_orbit.hpp) for the FreeFEM binding, reporting like the
+// shoot_forced (forced_orbit.hpp) and forced_harmonic_balance
+// (forced_harmonic_balance.hpp) for the FreeFEM binding, reporting like the
 // autonomous front end (user_orbit.hpp, OrbitReport). Free of Eigen and
 // FreeFEM types.
 //
@@ -38,6 +39,12 @@ struct ForcedOrbitOptions {
   /// orbit's basin; forced_orbit.hpp).
   int transient_periods = 0;
   int max_iterations = periodic_max_iterations;
+  /// "shooting" (forced_orbit.hpp) or "harmonic-balance"
+  /// (forced_harmonic_balance.hpp: `harmonics` harmonics of omega / m, the
+  /// guess's flow its initial series; the report then has the coefficients,
+  /// the Galerkin residual and the truncation estimate).
+  std::string method = "shooting";
+  int harmonics = 20;
 };
 
 /// The forced orbit from the guess (u, v) at t = 0 (user vectors). F0 and
@@ -47,7 +54,8 @@ struct ForcedOrbitOptions {
 /// components of the contact nodes (the exact flow does not model a
 /// time-varying offset of the nodal boundary relation, method.md §9).
 /// Throws InputError naming the argument (F0, Fc, Fs, u, v, omega,
-/// subharmonic, rayleighM, rayleighK, probe, transient, iterations),
+/// subharmonic, rayleighM, rayleighK, probe, transient, iterations, method,
+/// harmonics),
 /// NumericalError if Newton does not converge or an undamped mode is in
 /// resonance with a harmonic.
 OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double>& F0,
@@ -125,10 +133,11 @@ struct ForcedDoubling {
 /// damping, subharmonic, transient, iterations; its probe, or -1: the dof of
 /// largest amplitude at the first point). Throws InputError naming the
 /// argument (as forced_orbit, and parameter, from, to, step, maxStep,
-/// points, doubling, doublingAmplitude), NumericalError if the first orbit is
-/// not found or, with `doubling`, no period-2m orbit is found at the curve's
-/// first period doubling (InputError `doubling` if the curve has none); the
-/// curve ends early with a stop reason if the corrector fails further on.
+/// points, doubling, doublingAmplitude; method must be "shooting"),
+/// NumericalError if the first orbit is not found or, with `doubling`, no
+/// period-2m orbit is found at the curve's first period doubling (InputError
+/// `doubling` if the curve has none); the curve ends early with a stop reason
+/// if the corrector fails further on.
 ForcedResponse forced_response(const ContactProblem& problem, const std::vector<double>& F0,
                                const std::vector<std::vector<double>>& load_cos,
                                const std::vector<std::vector<double>>& load_sin,

@@ -179,24 +179,28 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
     h.max_iterations = o.max_iterations;
     const HarmonicBalanceResult r = harmonic_balance(field, u0, v0, T, h);
     orbit = r.orbit;
-    report.harmonics = r.harmonics;
-    report.balance_residual = r.residual;
-    report.truncation = r.truncation;
-    // Coefficients of the interior unknowns in user coordinates (contact
-    // normal components, which are slaved, left at zero).
-    const Index cols = r.coefficients.cols();
-    report.coefficients.assign(static_cast<std::size_t>(N * cols), 0.0);
-    for (Index k = 0; k < cols; ++k) {
-      const Vector ck = r.coefficients.col(k);
-      const Vector user =
-          problem.to_user(model->internal(model->basis ? model->basis->expand(ck) : ck));
-      for (Index i = 0; i < N; ++i) report.coefficients[i * cols + k] = user(i);
-    }
+    report_series(*model, r, report);
     extra << "method harmonic balance (" << (o.cosine_only ? "cosine only" : "cosine and sine")
           << ", " << o.integration << " integration), H = " << r.harmonics << "\n"
           << "Galerkin residual " << r.residual << ", truncation estimate " << r.truncation << "\n";
   }
   return describe(std::move(model), orbit, std::move(report), extra.str());
+}
+
+void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, OrbitReport& report) {
+  report.harmonics = r.harmonics;
+  report.balance_residual = r.residual;
+  report.truncation = r.truncation;
+  // Coefficients of the interior unknowns in user coordinates (contact
+  // normal components, which are slaved, left at zero).
+  const Index N = model.problem.n_dofs(), cols = r.coefficients.cols();
+  report.coefficients.assign(static_cast<std::size_t>(N * cols), 0.0);
+  for (Index k = 0; k < cols; ++k) {
+    const Vector ck = r.coefficients.col(k);
+    const Vector user =
+        model.problem.to_user(model.internal(model.basis ? model.basis->expand(ck) : ck));
+    for (Index i = 0; i < N; ++i) report.coefficients[i * cols + k] = user(i);
+  }
 }
 
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
