@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "errors.hpp"
+#include "forced_harmonic_balance.hpp"
 #include "forced_models.hpp"
 #include "forced_orbit.hpp"
 
@@ -198,6 +199,12 @@ TEST(StateSpaceFlow, BadDampingMatricesAreNamedErrors) {
     EXPECT_THROW(flow.integrate(Vector::Zero(1), Vector::Zero(1), 1, false), nbm::NumericalError)
         << "c " << c;
   }
+  // Harmonic balance carries Rayleigh damping only: a named error, not a
+  // silently undamped orbit.
+  const nbm::ExactFlow damped(field, with_matrix(Matrix::Constant(1, 1, 0.3)), load);
+  EXPECT_THROW(nbm::forced_harmonic_balance(damped, Vector::Zero(1), Vector::Zero(1),
+                                            nbm::ForcedHarmonicBalanceOptions{}),
+               nbm::InputError);
   ForcedChain free_chain = chain;
   free_chain.ground = 0;
   const auto free_field = free_chain.field(Vector::Zero(2));

@@ -44,7 +44,8 @@ struct ForcedHarmonicBalanceOptions {
 /// one period. Returns the orbit (period, and the series' state at t = 0,
 /// analysed on the flow), the coefficients (n x (2H + 1): c_0, a_1, b_1,
 /// ...), the scaled Galerkin residual and the truncation estimate (the
-/// scaled residual on harmonics H+1 .. 2H). Throws InputError on a bad guess
+/// scaled residual on harmonics H+1 .. 2H). Throws InputError on an assembled
+/// damping matrix (not in the Galerkin operator: shoot instead), on a bad guess
 /// or option (naming it), NumericalError if Newton does not converge.
 HarmonicBalanceResult forced_harmonic_balance(const ExactFlow& flow, const Vector& u0,
                                               const Vector& v0,
