@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "contact_problem.hpp"
@@ -109,6 +110,7 @@ class Trajectory {
   }
   void record(const Vector& u, const Vector& v, const Vector& a) {
     if (file_ == nullptr) return;
+    ++step_;
     for (const Vector* x : {&u, &v, &a}) {
       if (!comparing_) {
         std::fwrite(x->data(), sizeof(double), static_cast<std::size_t>(x->size()), file_);
@@ -121,17 +123,26 @@ class Trajectory {
         std::exit(2);
       }
       const double scale = std::max(recorded_.cwiseAbs().maxCoeff(), 1e-300);
-      largest_ = std::max(largest_, (*x - recorded_).cwiseAbs().maxCoeff() / scale);
+      Index at = 0;
+      const double difference = (*x - recorded_).cwiseAbs().maxCoeff(&at) / scale;
+      if (difference > largest_) {
+        largest_ = difference;
+        where_ = "in " + std::string(x == &u ? "u" : x == &v ? "v" : "a") + " at step " +
+                 std::to_string(step_) + ", dof " + std::to_string(at);
+      }
     }
   }
   bool comparing() const { return comparing_; }
   double largest_difference() const { return largest_; }
+  const std::string& where() const { return where_; }
 
  private:
   std::FILE* file_ = nullptr;
   bool comparing_ = false;
   Vector recorded_;
   double largest_ = 0;
+  int step_ = 0;
+  std::string where_;
 };
 
 }  // namespace
@@ -211,7 +222,7 @@ int main(int argc, char** argv) {
   std::printf("|u| + |v| + |a| after %d steps   %.17g\n", steps,
               stepper.u().norm() + stepper.v().norm() + stepper.a().norm());
   if (trajectory.comparing())
-    std::printf("largest difference from the recorded trajectory, relative: %.3g\n",
-                trajectory.largest_difference());
+    std::printf("largest difference from the recorded trajectory, relative: %.3g (%s)\n",
+                trajectory.largest_difference(), trajectory.where().c_str());
   return 0;
 }
