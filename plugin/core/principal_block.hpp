@@ -49,13 +49,17 @@ class PrincipalBlockFactor {
 
   /// False if A[F, F] is not (numerically) positive definite.
   bool positive_definite() const { return positive_definite_; }
-  /// x <- A[F, F]^-1 x (size |F|); no allocation.
+  /// x <- A[F, F]^-1 x (size |F|), for a positive definite block; no
+  /// allocation.
   void solve_in_place(Eigen::Ref<Vector> x) const;
   /// Bytes held by the factor and its workspace (not the object itself).
   std::size_t bytes() const;
 
  private:
   bool positive_definite_ = true;
+  // Whether dense_ holds A[F, F] (else L_ does, or F is empty): Eigen's LLT
+  // asserts if a factor never computed is asked anything, its size included.
+  bool has_dense_ = false;
   Eigen::LLT<Matrix> dense_;  // of a dense A
   // Of a sparse A: P A[F, F] P^T = L L^T.
   SparseMatrix L_;
