@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "errors.hpp"
@@ -72,16 +73,15 @@ void solve_principal(const PrincipalBlockFactor& factor, const Vector& q,
 // Block principal pivoting (header) from the active set in r.
 // `factor(F)` returns the Cholesky factor of A_FF for the free set F of
 // r.active (a pointer, null if A_FF is not positive definite); a_max is the
-// largest |A_ij|; F, infeasible
-// and work are workspaces. Rows marked in `frozen` (empty: none) stay at
+// largest |A_ij|; F, infeasible and work are workspaces. Rows marked in `frozen` (empty: none) stay at
 // z_i = 0 and are neither checked nor part of the tolerances' scale: the
 // pivoting then solves the principal sub-LCP of the other rows. Returns the
 // smallest w_i of the checked rows with z_i = 0 before the round-off noise
 // is removed (negative: a row accepted by its tolerance only).
 template <class Factor>
-double pivot(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
-           std::vector<Index>& infeasible, Vector& work, const std::vector<bool>& frozen,
-           Factor factor) {
+double pivot(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult& r,
+             std::vector<Index>& F, std::vector<Index>& infeasible, Vector& work,
+             const std::vector<bool>& frozen, Factor factor) {
   const Index n = q.size();
   // Single pivots alone (Murty) are finite on P-matrices but may need many
   // steps; this bound is far beyond what any practical problem uses and only
@@ -100,11 +100,11 @@ double pivot(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult&
     if (F.empty()) {
       r.z.setZero();
     } else {
-      const PrincipalBlockFactor* llt = factor(F);
-      if (llt == nullptr)
+      const PrincipalBlockFactor* A_FF = factor(F);
+      if (A_FF == nullptr)
         throw NumericalError("LCP: principal block of size " + std::to_string(F.size()) +
                              " is not positive definite (the matrix is not a P-matrix)");
-      solve_principal(*llt, q, F, work, r.z);
+      solve_principal(*A_FF, q, F, work, r.z);
     }
     r.w = q;
     A.add_product(r.z, r.w);
@@ -221,12 +221,11 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   if (n == 0) return r;
   LcpWorkspace ws(n);
   const PrincipalBlocks blocks(A);
-  std::vector<PrincipalBlockFactor> factor;  // the current one
+  std::optional<PrincipalBlockFactor> factor;  // the current one
   solve_two_scale(blocks, q, A.cwiseAbs().maxCoeff(), r, ws,
         [&](const std::vector<Index>& free) -> const PrincipalBlockFactor* {
-          factor.clear();
-          factor.emplace_back(blocks, free);
-          return factor.back().positive_definite() ? &factor.back() : nullptr;
+          factor.emplace(blocks, free);
+          return factor->positive_definite() ? &*factor : nullptr;
         });
   return r;
 }
