@@ -6,18 +6,24 @@
 // the same motion. Prints, for the NewmarkStepper, the setup (constructor),
 // initialize() and the mean step that changes the active set, each against
 // one factorization of M + dt^2/4 K or one plain contact-free Newmark step of
-// the same matrices (as BM_PlainNewmarkStep), and the heap its objects hold
+// the same matrices (as BM_PlainNewmarkStep), the mean free-flight step (the
+// same start with the obstacle 1e6 away, before the run), and the heap its objects hold
 // after the run against the plain factor's. Times are CPU times of this thread,
 // so that other jobs on the machine perturb them less than wall times; run with
 // OPENBLAS_NUM_THREADS=1. The last line, |u| + |v| + |a| at the end, compares
-// trajectories between versions of the core.
-//   nbm_contact_front NX NY EDGES STEPS
+// trajectories between versions of the core; with a file TRAJECTORY, a first
+// run writes u, v, a after every step there and a run with the file present
+// reads them back and prints the largest difference from them, step by step
+// relative to the recorded vector's largest entry.
+//   nbm_contact_front NX NY EDGES STEPS [TRAJECTORY]
 //   OPENBLAS_NUM_THREADS=1 build/bench/nbm_contact_front 500 50 2 60
 #include <malloc.h>
 #include <time.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include "contact_problem.hpp"
@@ -84,11 +90,66 @@ double plain_step_seconds(const nbm::CholeskyInverse& S, const nbm_bench::Assemb
   return (cpu_seconds() - start) / steps;
 }
 
+// Writes the state after each step to a new trajectory file, or compares it
+// with the one recorded there (the largest difference relative to the
+// recorded vector's largest entry, over the steps and u, v, a).
+class Trajectory {
+ public:
+  explicit Trajectory(const char* path) {
+    if (path == nullptr) return;
+    file_ = std::fopen(path, "rb");
+    comparing_ = file_ != nullptr;
+    if (!comparing_) file_ = std::fopen(path, "wb");
+    if (file_ == nullptr) {
+      std::fprintf(stderr, "cannot open %s\n", path);
+      std::exit(2);
+    }
+  }
+  ~Trajectory() {
+    if (file_ != nullptr) std::fclose(file_);
+  }
+  void record(const Vector& u, const Vector& v, const Vector& a) {
+    if (file_ == nullptr) return;
+    ++step_;
+    for (const Vector* x : {&u, &v, &a}) {
+      if (!comparing_) {
+        std::fwrite(x->data(), sizeof(double), static_cast<std::size_t>(x->size()), file_);
+        continue;
+      }
+      recorded_.resize(x->size());
+      if (std::fread(recorded_.data(), sizeof(double), static_cast<std::size_t>(x->size()),
+                     file_) != static_cast<std::size_t>(x->size())) {
+        std::fprintf(stderr, "the trajectory file is shorter than this run\n");
+        std::exit(2);
+      }
+      const double scale = std::max(recorded_.cwiseAbs().maxCoeff(), 1e-300);
+      Index at = 0;
+      const double difference = (*x - recorded_).cwiseAbs().maxCoeff(&at) / scale;
+      if (difference > largest_) {
+        largest_ = difference;
+        where_ = "in " + std::string(x == &u ? "u" : x == &v ? "v" : "a") + " at step " +
+                 std::to_string(step_) + ", dof " + std::to_string(at);
+      }
+    }
+  }
+  bool comparing() const { return comparing_; }
+  double largest_difference() const { return largest_; }
+  const std::string& where() const { return where_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  bool comparing_ = false;
+  Vector recorded_;
+  double largest_ = 0;
+  int step_ = 0;
+  std::string where_;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 5) {
-    std::fprintf(stderr, "usage: %s NX NY EDGES(1|2) STEPS\n", argv[0]);
+  if (argc != 5 && argc != 6) {
+    std::fprintf(stderr, "usage: %s NX NY EDGES(1|2) STEPS [TRAJECTORY]\n", argv[0]);
     return 2;
   }
   nbm_bench::Plate p;
@@ -115,9 +176,24 @@ int main(int argc, char** argv) {
   for (int i = 0; i < p.nodes_x(); ++i)
     for (int j = 0; j < p.nodes_y(); ++j)
       falling(problem.internal_index(2 * p.node(i, j) + 1)) = -kSpeed;
+  // Free flight: the same start, the obstacle out of reach (every contact
+  // open); the first steps fill the caches of that set.
+  const nbm::Obstacle far = nbm::Obstacle::at_rest(
+      problem.gaps() + Vector::Constant(problem.n_contact(), kNeverGap));
+  const int free_steps = 20, free_warm = 2;
+  stepper.initialize(zero, falling, nbm::ContactLoad{F, far});
+  double free_flight = 0;
+  for (int s = 0; s < free_steps; ++s) {
+    start = cpu_seconds();
+    stepper.step(F);
+    if (s >= free_warm) free_flight += cpu_seconds() - start;
+  }
+  free_flight /= free_steps - free_warm;
+
   start = cpu_seconds();
   stepper.initialize(zero, falling, F);
   const double initialize = cpu_seconds() - start;
+  Trajectory trajectory(argc == 6 ? argv[5] : nullptr);
   double changing = 0;
   int changes = 0, solves = 0;
   for (int s = 0; s < steps; ++s) {
@@ -125,6 +201,7 @@ int main(int argc, char** argv) {
     start = cpu_seconds();
     solves += stepper.step(F).active_set_iterations;
     const double t = cpu_seconds() - start;
+    trajectory.record(stepper.u(), stepper.v(), stepper.a());
     if (stepper.active() != before) {
       changing += t;
       ++changes;
@@ -140,8 +217,12 @@ int main(int argc, char** argv) {
   std::printf("changing step / plain step       %.1f (%d of %d steps, %.2f solves per step)\n",
               changes > 0 ? changing / changes / plain_step : 0.0, changes, steps,
               static_cast<double>(solves) / steps);
+  std::printf("free flight / plain step         %.2f\n", free_flight / plain_step);
   std::printf("heap held / plain factor's       %.1f\n", held / plain_heap);
   std::printf("|u| + |v| + |a| after %d steps   %.17g\n", steps,
               stepper.u().norm() + stepper.v().norm() + stepper.a().norm());
+  if (trajectory.comparing())
+    std::printf("largest difference from the recorded trajectory, relative: %.3g (%s)\n",
+                trajectory.largest_difference(), trajectory.where().c_str());
   return 0;
 }

@@ -26,8 +26,9 @@ std::size_t factor_bytes(const std::shared_ptr<const Factor>& f) {
 }
 
 /// Default byte budget of one cache: 64 MiB, two dense factors of 2000
-/// contact nodes (32 MB each). A stepper has up to three such caches (Schur
-/// complements, LCP blocks, open blocks).
+/// contact nodes (32 MB each). A stepper has up to two such caches (Schur
+/// complements; the principal blocks of K_CC, which the LCP and the open
+/// blocks of the nodal boundary relation share).
 constexpr std::size_t kActiveSetCacheBytes = std::size_t(64) << 20;
 /// Default bound on the entries of one cache: with few contact nodes the
 /// budget would hold thousands of small factors, and a long run meeting ever

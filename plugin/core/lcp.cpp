@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "errors.hpp"
@@ -57,40 +58,30 @@ void start(LcpResult& r, const Vector& q, const std::vector<bool>& guess) {
   r.pivots = 0;
 }
 
-// The principal block A_FF of the free set F.
-Matrix principal_block(const Matrix& A, const std::vector<Index>& F) {
-  const Index m = static_cast<Index>(F.size());
-  Matrix AFF(m, m);
-  for (Index a = 0; a < m; ++a)
-    for (Index b = 0; b < m; ++b) AFF(a, b) = A(F[a], F[b]);
-  return AFF;
-}
-
 // z solves the principal subproblem of the free set F with the factor of
 // A_FF: z_F = -A_FF^{-1} q_F, z_G = 0. `work` holds at least |F| entries.
-void solve_principal(const Eigen::LLT<Matrix>& llt, const Vector& q,
+void solve_principal(const PrincipalBlockFactor& factor, const Vector& q,
                      const std::vector<Index>& F, Vector& work, Vector& z) {
   z.setZero();
   const Index m = static_cast<Index>(F.size());
   auto zF = work.head(m);
   for (Index a = 0; a < m; ++a) zF(a) = -q(F[a]);
-  llt.matrixL().solveInPlace(zF);
-  llt.matrixU().solveInPlace(zF);
+  factor.solve_in_place(zF);
   for (Index a = 0; a < m; ++a) z(F[a]) = zF(a);
 }
 
 // Block principal pivoting (header) from the active set in r.
 // `factor(F)` returns the Cholesky factor of A_FF for the free set F of
-// r.active (a pointer, null if A_FF is not positive definite); F, infeasible
-// and work are workspaces. Rows marked in `frozen` (empty: none) stay at
+// r.active (a pointer, null if A_FF is not positive definite); a_max is the
+// largest |A_ij|; F, infeasible and work are workspaces. Rows marked in `frozen` (empty: none) stay at
 // z_i = 0 and are neither checked nor part of the tolerances' scale: the
 // pivoting then solves the principal sub-LCP of the other rows. Returns the
 // smallest w_i of the checked rows with z_i = 0 before the round-off noise
 // is removed (negative: a row accepted by its tolerance only).
 template <class Factor>
-double pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::vector<Index>& F,
-           std::vector<Index>& infeasible, Vector& work, const std::vector<bool>& frozen,
-           Factor factor) {
+double pivot(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult& r,
+             std::vector<Index>& F, std::vector<Index>& infeasible, Vector& work,
+             const std::vector<bool>& frozen, Factor factor) {
   const Index n = q.size();
   // Single pivots alone (Murty) are finite on P-matrices but may need many
   // steps; this bound is far beyond what any practical problem uses and only
@@ -109,14 +100,14 @@ double pivot(const Matrix& A, const Vector& q, double a_max, LcpResult& r, std::
     if (F.empty()) {
       r.z.setZero();
     } else {
-      const Eigen::LLT<Matrix>* llt = factor(F);
-      if (llt == nullptr)
+      const PrincipalBlockFactor* A_FF = factor(F);
+      if (A_FF == nullptr)
         throw NumericalError("LCP: principal block of size " + std::to_string(F.size()) +
                              " is not positive definite (the matrix is not a P-matrix)");
-      solve_principal(*llt, q, F, work, r.z);
+      solve_principal(*A_FF, q, F, work, r.z);
     }
     r.w = q;
-    r.w.noalias() += A * r.z;
+    A.add_product(r.z, r.w);
     for (Index i : F) r.w(i) = 0.0;  // exact on the free set by construction
     if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
       throw NumericalError("LCP: the solution overflows; the data are too badly scaled");
@@ -189,7 +180,7 @@ bool mark_far_rows(const Vector& q, const LcpResult& r, LcpWorkspace& ws) {
 // Should that check or the second pivoting fail, the first solution (valid
 // to the full scale's round-off) stands.
 template <class Factor>
-void solve_two_scale(const Matrix& A, const Vector& q, double a_max, LcpResult& r,
+void solve_two_scale(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult& r,
                      LcpWorkspace& ws, Factor factor) {
   const double w_min = pivot(A, q, a_max, r, ws.free, ws.infeasible, ws.rhs, {}, factor);
   if (w_min >= 0 || !mark_far_rows(q, r, ws)) return;
@@ -229,23 +220,29 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   start(r, q, guess);
   if (n == 0) return r;
   LcpWorkspace ws(n);
-  Eigen::LLT<Matrix> llt;
-  solve_two_scale(A, q, A.cwiseAbs().maxCoeff(), r, ws,
-        [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
-          llt.compute(principal_block(A, free));
-          return llt.info() == Eigen::Success ? &llt : nullptr;
+  const PrincipalBlocks blocks(A);
+  std::optional<PrincipalBlockFactor> factor;  // the current one
+  solve_two_scale(blocks, q, A.cwiseAbs().maxCoeff(), r, ws,
+        [&](const std::vector<Index>& free) -> const PrincipalBlockFactor* {
+          factor.emplace(blocks, free);
+          return factor->positive_definite() ? &*factor : nullptr;
         });
   return r;
 }
 
-CachedLcpSolver::CachedLcpSolver(Matrix A) : A_(std::move(A)), workspace_(A_.rows()) {
-  check_matrix(A_, A_.rows());
-  a_max_ = A_.size() > 0 ? A_.cwiseAbs().maxCoeff() : 0.0;
-  result_.active.reserve(A_.rows());
+CachedLcpSolver::CachedLcpSolver(Matrix A)
+    : A_((check_matrix(A, A.rows()), A)), workspace_(A.rows()) {
+  a_max_ = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
+  result_.active.reserve(A.rows());
+}
+
+const PrincipalBlockFactor& CachedLcpSolver::principal_factor(const std::vector<bool>& active,
+                                                              const std::vector<Index>& F) const {
+  return principal_blocks_.get(active, [&] { return PrincipalBlockFactor(A_, F); });
 }
 
 const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>& guess) const {
-  const Index n = A_.rows();
+  const Index n = A_.dense().rows();
   if (q.size() != n)
     throw InputError("LCP: q has size " + std::to_string(q.size()) + ", expected " +
                      std::to_string(n) + " (the size of the matrix)");
@@ -253,10 +250,9 @@ const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>
   start(result_, q, guess);
   if (n == 0) return result_;
   solve_two_scale(A_, q, a_max_, result_, workspace_,
-        [&](const std::vector<Index>& free) -> const Eigen::LLT<Matrix>* {
-          const auto& llt = principal_blocks_.get(
-              result_.active, [&] { return Eigen::LLT<Matrix>(principal_block(A_, free)); });
-          return llt.info() == Eigen::Success ? &llt : nullptr;
+        [&](const std::vector<Index>& free) -> const PrincipalBlockFactor* {
+          const auto& factor = principal_factor(result_.active, free);
+          return factor.positive_definite() ? &factor : nullptr;
         });
   return result_;
 }

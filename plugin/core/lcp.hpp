@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "active_set.hpp"
+#include "principal_block.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -61,7 +62,8 @@ class LcpSolver {
 /// blocks are kept per active set (the sets recur from step to step: a step
 /// whose set is known costs two triangular solves and a product, not a
 /// factorization), and so are the workspaces: once every set a solve meets
-/// is known, the solve allocates nothing. One solve at a time.
+/// is known, the solve allocates nothing. One solve at a time. A sparse
+/// matrix (K_CC) gets sparse factors and sparse products (principal_block.hpp).
 class CachedLcpSolver {
  public:
   /// Checks A as LcpSolver::solve does (size, finite, symmetric), once.
@@ -71,10 +73,18 @@ class CachedLcpSolver {
   /// until the next call. Throws as LcpSolver::solve does.
   const LcpResult& solve(const Vector& q, const std::vector<bool>& guess) const;
 
+  const PrincipalBlocks& matrix() const { return A_; }
+  /// The cached factor of A[F, F], F the free rows {i : !active[i]} (in
+  /// ascending order), made if the set is new: the solves' own, shared with
+  /// a caller that factors the same blocks (the nodal boundary relation's
+  /// open blocks). Valid until the next call or solve.
+  const PrincipalBlockFactor& principal_factor(const std::vector<bool>& active,
+                                               const std::vector<Index>& F) const;
+
  private:
-  Matrix A_;
+  PrincipalBlocks A_;
   double a_max_;
-  mutable ActiveSetCache<Eigen::LLT<Matrix>> principal_blocks_;
+  mutable ActiveSetCache<PrincipalBlockFactor> principal_blocks_;
   mutable LcpResult result_;
   mutable LcpWorkspace workspace_;
 };

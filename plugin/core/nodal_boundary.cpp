@@ -15,8 +15,9 @@ NodalBoundary::NodalBoundary(const ContactProblem& problem)
       q_(problem.n_contact()),
       work_(problem.n_contact()),
       Kx_(problem.n_contact()) {
-  Eigen::LLT<Matrix> llt(problem.K_CC());
-  if (llt.info() != Eigen::Success)
+  std::vector<Index> all(static_cast<std::size_t>(problem.n_contact()));
+  for (std::size_t k = 0; k < all.size(); ++k) all[k] = static_cast<Index>(k);
+  if (!PrincipalBlockFactor(lcp_.matrix(), all).positive_definite())
     throw InputError(
         "K: the contact block K_CC is not positive definite; the contact nodes must not "
         "carry a rigid motion of their own (check the contact dofs and the Dirichlet dofs)");
@@ -30,7 +31,7 @@ const LcpResult& NodalBoundary::enforce(Vector& u, const Vector& F, const Vector
   // with q = F_C - (K u)_C + K_CC (u_C - g).
   for (std::size_t k = 0; k < c.size(); ++k) work_(k) = u(c[k]) - g(k);
   reactions(u, F, q_);
-  q_.noalias() += problem_.K_CC() * work_;
+  lcp_.matrix().add_product(work_, q_);
   const LcpResult& r = lcp_.solve(q_, guess);
   for (std::size_t k = 0; k < c.size(); ++k) u(c[k]) = g(k) - r.z(k);
   return r;
@@ -47,16 +48,11 @@ void NodalBoundary::project(Vector& x, const ActiveSet& active, const Vector& h)
   }
   if (open_.empty()) return;
   const Index m = static_cast<Index>(open_.size());
-  const auto& llt = open_block_.get(active, [&] {
-    Matrix A(m, m);
-    for (Index a = 0; a < m; ++a)
-      for (Index b = 0; b < m; ++b) A(a, b) = problem_.K_CC()(open_[a], open_[b]);
-    return Eigen::LLT<Matrix>(A);
-  });
+  const PrincipalBlockFactor& open_block = lcp_.principal_factor(active, open_);
   Kx_.noalias() = K_C_ * x;
   auto delta = work_.head(m);
   for (Index a = 0; a < m; ++a) delta(a) = h(open_[a]) - Kx_(open_[a]);
-  llt.solveInPlace(delta);
+  open_block.solve_in_place(delta);
   for (Index a = 0; a < m; ++a) x(c[open_[a]]) += delta(a);
 }
 

@@ -2,8 +2,6 @@
 // the interior ones, u_C = A u_O + e, through the LCP with the P-matrix K_CC.
 #pragma once
 
-#include <Eigen/Cholesky>
-
 #include "active_set.hpp"
 #include "contact_problem.hpp"
 #include "lcp.hpp"
@@ -51,8 +49,9 @@ class NodalBoundary {
   // Stiffness rows of the contact dofs, stored by rows: a product with a
   // dofs vector costs the rows' nonzeros, not a pass over all dofs.
   Eigen::SparseMatrix<double, Eigen::RowMajor, int> K_C_;
-  CachedLcpSolver lcp_;  // of K_CC
-  mutable ActiveSetCache<Eigen::LLT<Matrix>> open_block_;  // K_In,In factors
+  // Of K_CC; its principal-block factors are also the open blocks K_In,In
+  // of project() (the LCP's free rows are the open contacts).
+  CachedLcpSolver lcp_;
   // Workspaces (one value per contact node), so that the methods called at
   // every step do not allocate: one call at a time.
   mutable Vector q_, work_, Kx_;

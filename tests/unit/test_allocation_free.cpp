@@ -18,6 +18,7 @@
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
 #include "newmark_stepper.hpp"
+#include "principal_block.hpp"
 #include "test_problems.hpp"
 
 extern "C" {
@@ -109,6 +110,26 @@ TEST(AllocationFree, ImplicitNewmarkStep) {
   const DroppedPlate d;
   nbm::NewmarkStepper stepper(*d.problem, 1e-3);
   EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
+TEST(AllocationFree, ImplicitNewmarkStepWithSparseContactBlocks) {
+  // 33 contact nodes along an edge: K_CC is a band, so the LCP's principal
+  // blocks and the open blocks get sparse factors and products
+  // (principal_block.hpp); the plate above has too few contact nodes for it.
+  const DroppedPlate d(false, 32);
+  ASSERT_TRUE(nbm::PrincipalBlocks(d.problem->K_CC()).sparse());
+  nbm::NewmarkStepper stepper(*d.problem, 1e-3);
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
+TEST(AllocationFree, ExplicitStepWithSparseContactBlocks) {
+  const DroppedPlate d(false, 32);
+  ASSERT_TRUE(nbm::PrincipalBlocks(d.problem->K_CC()).sparse());
+  const double critical =
+      2 / std::sqrt(nbm::max_eigenvalue(d.problem->K(), d.problem->lumped_mass()));
+  nbm::CentralDifferenceStepper stepper(*d.problem, 0.5 * critical);
+  const int steps = static_cast<int>(0.1 / (0.5 * critical));
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), steps), 0);
 }
 
 TEST(AllocationFree, BorderedSchurFactorSolve) {

@@ -1,13 +1,15 @@
 // The dense kernels of the contact linear algebra (issue 14) against
 // independent dense computations on random problems: the Gram matrix Y^T Y
-// of a sparse Y (blocked rank-k updates), the one-set constrained solve, and
-// the byte bound of the per-active-set caches.
+// of a sparse Y (blocked rank-k updates), the one-set constrained solve, the
+// principal-block factors of the LCP and the open blocks (sparse and dense),
+// and the byte bound of the per-active-set caches.
 #include <gtest/gtest.h>
 
 #include <random>
 
 #include "active_set.hpp"
 #include "constrained_solver.hpp"
+#include "principal_block.hpp"
 #include "schur_factor.hpp"
 #include "spd_inverse.hpp"
 #include "test_util.hpp"
@@ -220,6 +222,77 @@ TEST(DenseKernels, BorderedSchurFactorSolvesAsADenseSolve) {
       EXPECT_LT(bordered.bytes(), sizeof(double) * n * n);
     }
   }
+}
+
+// A random K_CC-like matrix: symmetric positive definite with the sparsity of
+// a contact boundary, a band (nodes along an edge coupled to their
+// neighbours) plus a few far couplings (a face's grid rows), entries of mixed
+// signs and scales 1e4.
+Mat sparse_spd(Index n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  Mat A = Mat::Zero(n, n);
+  auto couple = [&](Index i, Index j) {
+    const double a = 1e4 * U(rng);
+    A(i, j) += a;
+    A(j, i) += a;
+    A(i, i) += std::abs(a) * 1.01;  // diagonal dominance: definite
+    A(j, j) += std::abs(a) * 1.01;
+  };
+  for (Index i = 0; i + 1 < n; ++i) couple(i, i + 1);
+  for (Index i = 0; i + 7 < n; i += 5) couple(i, i + 7);
+  for (Index i = 0; i < n; ++i) A(i, i) += 1e2 * (1 + U(rng));
+  return A;
+}
+
+TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
+  // Sparse factors (fill-reducing order) of principal blocks of a sparse
+  // matrix, and dense ones of a dense matrix, against dense solves of the
+  // blocks, on random free sets (all rows, none, every other, random).
+  std::mt19937 rng(23);
+  const Index n = 60;
+  const Mat sparse = sparse_spd(n, rng), dense = nbm_test::random_spd(n, 1e4, rng);
+  const nbm::PrincipalBlocks sparse_blocks(sparse), dense_blocks(dense);
+  EXPECT_TRUE(sparse_blocks.sparse());
+  EXPECT_FALSE(dense_blocks.sparse());
+  std::bernoulli_distribution coin(0.5);
+  for (const auto* blocks : {&sparse_blocks, &dense_blocks}) {
+    const Mat& A = blocks->dense();
+    // y += A x against the dense product.
+    const Vec x = nbm_test::random_vector(n, rng);
+    Vec y = nbm_test::random_vector(n, rng);
+    const Vec y_ref = y + A * x;
+    blocks->add_product(x, y);
+    EXPECT_LE((y - y_ref).cwiseAbs().maxCoeff(), 1e-12 * y_ref.cwiseAbs().maxCoeff());
+    for (int trial = 0; trial < 6; ++trial) {
+      std::vector<Index> F;
+      for (Index i = 0; i < n; ++i)
+        if (trial == 0 || (trial == 2 && i % 2 == 0) || (trial > 2 && coin(rng))) F.push_back(i);
+      const nbm::PrincipalBlockFactor factor(*blocks, F);
+      ASSERT_TRUE(factor.positive_definite());
+      const Index m = static_cast<Index>(F.size());
+      Mat AFF(m, m);
+      for (Index a = 0; a < m; ++a)
+        for (Index b = 0; b < m; ++b) AFF(a, b) = A(F[a], F[b]);
+      const Vec b = nbm_test::random_vector(m, rng);
+      Vec z = b;
+      factor.solve_in_place(z);
+      if (m == 0) continue;
+      const Vec z_ref = AFF.fullPivLu().solve(b);
+      EXPECT_LE((z - z_ref).norm(), 1e-10 * z_ref.norm()) << "trial " << trial;
+      EXPECT_LE((AFF * z - b).cwiseAbs().maxCoeff(),
+                1e-12 * AFF.cwiseAbs().maxCoeff() * z.cwiseAbs().maxCoeff());
+    }
+  }
+  // A sparse factor holds about its fill (a band: O(n)), not n^2 doubles.
+  std::vector<Index> all(n);
+  for (Index i = 0; i < n; ++i) all[i] = i;
+  EXPECT_LT(nbm::PrincipalBlockFactor(sparse_blocks, all).bytes(), sizeof(double) * n * n / 2);
+  // An indefinite block is reported, not factored.
+  Mat indefinite = sparse;
+  indefinite(3, 3) = -1e6;
+  EXPECT_FALSE(nbm::PrincipalBlockFactor(nbm::PrincipalBlocks(indefinite), all).positive_definite());
+  EXPECT_TRUE(nbm::PrincipalBlockFactor(nbm::PrincipalBlocks(indefinite), {0, 1, 2, 4})
+                  .positive_definite());
 }
 
 // A factor of a k x k matrix: 8 k^2 bytes.

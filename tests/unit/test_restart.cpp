@@ -27,6 +27,9 @@ struct Case {
   bool plate;
   double angle;  // plate only: rotated contact normals when != 0
   Scheme scheme;
+  // Plate only: cells along x. With 32, the 33 contact nodes' K_CC is sparse
+  // enough for sparse principal-block factors (principal_block.hpp).
+  int nx = 8;
 };
 
 
@@ -43,7 +46,7 @@ Problem make(const Case& c) {
   Eigen::MatrixXd positions;
   if (c.plate) {
     Plate plate;
-    plate.nx = 8;
+    plate.nx = c.nx;
     plate.ny = 4;
     plate.angle = c.angle;
     p.sim = std::make_unique<Simulation>(assemble(plate), nbm_test::bottom_contact(plate, 0.02));
@@ -123,7 +126,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"InclinedPlateNewmark", true, 0.3, Scheme::Newmark},
                       Case{"InclinedPlateMassless", true, 0.3, Scheme::Massless},
                       Case{"InclinedPlateExplicit", true, 0.3, Scheme::Explicit},
-                      Case{"InclinedPlateMoreauJean", true, 0.3, Scheme::MoreauJean}),
+                      Case{"InclinedPlateMoreauJean", true, 0.3, Scheme::MoreauJean},
+                      Case{"WideInclinedPlateNewmark", true, 0.3, Scheme::Newmark, 32},
+                      Case{"WideInclinedPlateMassless", true, 0.3, Scheme::Massless, 32}),
     [](const ::testing::TestParamInfo<Case>& info) { return info.param.name; });
 
 TEST(RestartState, RestoreValidatesItsArguments) {

@@ -1,0 +1,73 @@
+#include "principal_block.hpp"
+
+#include <Eigen/SparseCholesky>
+
+namespace nbm {
+
+PrincipalBlocks::PrincipalBlocks(const Matrix& A) : A_(A) {
+  const Index nonzeros = (A_.array() != 0.0).count();
+  sparse_ = A_.size() > 0 && kSparseFraction * nonzeros <= A_.size();
+  if (sparse_) A_sparse_ = A_.sparseView(0.0, 0.0);
+}
+
+void PrincipalBlocks::add_product(const Vector& x, Vector& y) const {
+  if (sparse_)
+    y.noalias() += A_sparse_ * x;
+  else
+    y.noalias() += A_ * x;
+}
+
+PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::vector<Index>& F) {
+  const Index m = static_cast<Index>(F.size());
+  work_.resize(m);
+  if (m == 0) return;
+  if (!A.sparse_) {
+    Matrix block(m, m);
+    for (Index b = 0; b < m; ++b)
+      for (Index a = 0; a < m; ++a) block(a, b) = A.A_(F[a], F[b]);
+    dense_.compute(block);
+    has_dense_ = true;
+    positive_definite_ = dense_.info() == Eigen::Success;
+    return;
+  }
+  // A[F, F] from the columns of F, rows renumbered (position in F, -1 outside).
+  std::vector<Index> position(static_cast<std::size_t>(A.A_.rows()), -1);
+  for (Index a = 0; a < m; ++a) position[static_cast<std::size_t>(F[a])] = a;
+  std::vector<Triplet> entries;
+  for (Index b = 0; b < m; ++b)
+    for (SparseMatrix::InnerIterator it(A.A_sparse_, F[b]); it; ++it) {
+      const Index a = position[static_cast<std::size_t>(it.row())];
+      if (a >= 0) entries.emplace_back(static_cast<int>(a), static_cast<int>(b), it.value());
+    }
+  SparseMatrix block(m, m);
+  block.setFromTriplets(entries.begin(), entries.end());
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, Eigen::AMDOrdering<int>> llt(block);
+  positive_definite_ = llt.info() == Eigen::Success;
+  if (!positive_definite_) return;
+  L_ = llt.matrixL();
+  P_ = llt.permutationP();
+  P_inverse_ = llt.permutationPinv();
+}
+
+void PrincipalBlockFactor::solve_in_place(Eigen::Ref<Vector> x) const {
+  if (x.size() == 0) return;
+  if (has_dense_) {
+    dense_.solveInPlace(x);
+    return;
+  }
+  work_ = P_ * x;
+  L_.triangularView<Eigen::Lower>().solveInPlace(work_);
+  L_.transpose().triangularView<Eigen::Upper>().solveInPlace(work_);
+  x = P_inverse_ * work_;
+}
+
+std::size_t PrincipalBlockFactor::bytes() const {
+  const auto doubles =
+      static_cast<std::size_t>((has_dense_ ? dense_.matrixLLT().size() : 0) + work_.size());
+  const auto sparse = static_cast<std::size_t>(L_.nonZeros()) * (sizeof(double) + sizeof(int)) +
+                      static_cast<std::size_t>(L_.outerSize() + 1) * sizeof(int) +
+                      static_cast<std::size_t>(P_.size() + P_inverse_.size()) * sizeof(int);
+  return doubles * sizeof(double) + sparse;
+}
+
+}  // namespace nbm
