@@ -24,7 +24,9 @@
 //   nbmOrbitSummary(S, "file.txt");   // the summary, printed and written
 //
 // Forced orbits (method.md §9; core: user_forced_orbit.hpp), under the load
-// F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t):
+// F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t)
+// and moving obstacles, gaps g(t) = g0 + sum_k gapCos(:, k-1) cos(k omega t)
+// + gapSin(:, k-1) sin(k omega t) (g0: the NBM object's gaps, method.md §8):
 //   real T = nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v,  // guess (u, v) at t = 0
 //              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K; default:
 //                                              // the NBM object's coefficients
@@ -32,10 +34,13 @@
 //              probe = dof,                    // amplitude of this dof (default:
 //                                              // the dof of largest amplitude)
 //              transient = 0,                  // periods run from the guess first
-//              iterations = 50);
+//              iterations = 50,
+//              gapCos = gc, gapSin = gs);      // harmonics of the gaps (default: none)
 //   // Fc, Fs: real[int,int] ndof x H (column k-1: harmonic k; either may have
 //   // fewer columns, even 0) or real[int] of size ndof (one harmonic, or size 0:
-//   // none). They must vanish on the contact dofs. u, v hold the orbit's state
+//   // none); on the contact dofs they move the nodal boundary relation like the
+//   // gaps. gapCos, gapSin: of the same kind as Fc, Fs, one row (or entry) per
+//   // contact node (the order of the gaps). u, v hold the orbit's state
 //   // at t = 0 (and at every t = k T: no phase condition, time is the
 //   // excitation's); the period T = 2 pi m / omega is returned. The nbmOrbit*
 //   // functions above read the last forced orbit too (no trivial multiplier:
@@ -44,7 +49,8 @@
 //   // redistributed mass, as in the time steppers.
 //   int n = nbmForcedResponse(S, F0, Fc, Fs, omega, u, v,  // the forced orbit as above,
 //              (the named arguments of nbmForcedOrbit),   // then its response curve
-//              parameter = "omega",            // or "amplitude": a factor on Fc, Fs (1 at start)
+//              parameter = "omega",            // or "amplitude": a factor on Fc, Fs,
+//                                              // gapCos, gapSin (1 at start)
 //              to = pEnd, from = pOther,       // heads towards `to`, stays in [from, to]
 //                                              // (from: default the start)
 //              step = 0.02, maxStep = 0.2,     // arclength steps (scaled unknowns)
@@ -215,8 +221,8 @@ class ForcedCall : public E_F0mps {
       : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {}
 
   /// The inputs, checked; `nargs` begins with the six named arguments of
-  /// forced_options.
-  ForcedInputs gather(Stack s, const Expression* nargs, const char* fn) const {
+  /// forced_options, and holds gapCos, gapSin at `gaps`, `gaps` + 1.
+  ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn) const {
     ForcedInputs in;
     in.h = GetAny<NbmHandle*>((*handle)(s));
     in.solver = &solver_of(in.h, fn);
@@ -229,6 +235,9 @@ class ForcedCall : public E_F0mps {
     in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
     in.cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
     in.sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    if (nargs[gaps]) in.options.gap_cos = harmonics_of(GetAny<H>((*nargs[gaps])(s)), fn, "gapCos");
+    if (nargs[gaps + 1])
+      in.options.gap_sin = harmonics_of(GetAny<H>((*nargs[gaps + 1])(s)), fn, "gapSin");
     return in;
   }
 };
@@ -252,7 +261,7 @@ class ForcedOp : public OneOperator {
 template <class H>
 class ForcedOrbit : public ForcedCall<H> {
  public:
-  static const int n_name_param = 6;
+  static const int n_name_param = 8;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -262,7 +271,7 @@ class ForcedOrbit : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedOrbit";
-    const ForcedInputs in = this->gather(s, nargs, fn);
+    const ForcedInputs in = this->gather(s, nargs, 6, fn);
     auto report = guarded(fn, [&] {
       return nbm::forced_orbit(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
                                in.options);
@@ -277,6 +286,7 @@ basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
     {"rayleighM", &typeid(double)}, {"rayleighK", &typeid(double)},
     {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
     {"transient", &typeid(long)},   {"iterations", &typeid(long)},
+    {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
 // nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments
@@ -291,7 +301,7 @@ int event_code(const std::string& kind) {
 template <class H>
 class ForcedResponse : public ForcedCall<H> {
  public:
-  static const int n_name_param = 16;
+  static const int n_name_param = 18;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -301,7 +311,7 @@ class ForcedResponse : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedResponse";
-    const ForcedInputs in = this->gather(s, nargs, fn);
+    const ForcedInputs in = this->gather(s, nargs, 16, fn);
     nbm::ForcedResponseOptions r;
     if (nargs[6]) r.parameter = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) r.from = GetAny<double>((*nargs[7])(s));
@@ -361,6 +371,7 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"maxStep", &typeid(double)},   {"points", &typeid(long)},
     {"locate", &typeid(bool)},      {"file", &typeid(string*)},
     {"curve", &typeid(KNM<double>*)}, {"events", &typeid(KNM<double>*)},
+    {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
 const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {
