@@ -158,3 +158,15 @@ nbm_summary_test(forced-plate-settle
 nbm_summary_test(forced-plate-curve
   "folds>=2 foldCheckUp<=0.011 foldCheckDown<=0.011 arcPeriodicity<=1e-10 arcEnd>=1.399 arcUnstable>=1 periodicity<=1e-10"
   ${FORCED_PLATE} -out forced-curve -settle 0)
+
+# The blade-tip interaction map (edp/blade-tip-sweep.edp): one point of it,
+# the forced orbit against the ovalised casing (moving gaps, gapCos=) at
+# Omega = 3.5, against a damped Newmark run of the same blade (nbmStep, the
+# casing moved by nbmObstacle, T/400) from rest: after 150 periods (largest
+# |multiplier| 0.93) the run is within 5e-3 of the orbit, relative to |u0|
+# (measured 3.2e-3 at T/400, 7.7e-4 at T/800: the stepper's second-order
+# error); the orbit rubs (switches) and is periodic to 1e-10.
+nbm_summary_test(blade-tip-settle
+  "settleStable>=1 settleSwitches>=2 settleStart>=0.99 settleDistance<=5e-3 periodicity<=1e-10 complementarity<=1e-12"
+  ${PROJECT_SOURCE_DIR}/edp/blade-tip-sweep.edp -out blade-tip-settle -points 0 -settle 1
+  -g0 1e-2 -delta 8e-3 -settleOmega 3.5 -settlePeriods 150 -settleSteps 400)
