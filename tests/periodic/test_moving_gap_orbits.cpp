@@ -260,7 +260,8 @@ TEST(MovingGapOrbit, OnAMovingWallTheLinearLimitIsTheDrivenFrequencyResponse) {
   damping.a_M = 0.03, damping.b_K = 0.02;
   const Matrix M = chain.M(), K = chain.K();
   const Matrix C = damping.a_M * M + damping.b_K * K;
-  const Matrix Moo = M.topLeftCorner(n, n), Koo = K.topLeftCorner(n, n), Coo = C.topLeftCorner(n, n);
+  const Matrix Moo = M.topLeftCorner(n, n), Koo = K.topLeftCorner(n, n);
+  const Matrix Coo = C.topLeftCorner(n, n);
   const Vector Koc = K.topRightCorner(n, 1), Coc = C.topRightCorner(n, 1);
   for (double w : {0.5, 1.7}) {
     nbm::HarmonicLoad load;

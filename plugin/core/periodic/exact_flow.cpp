@@ -222,11 +222,23 @@ void RegionFlow::state(double t, Vector& u, Vector& v) const {
   v = r_.modes * m.qd;
 }
 
-Vector RegionFlow::value(double t) const { return r_.d + G_ * modal(t).q + offset(t, 0); }
+Vector RegionFlow::value(double t) const {
+  Vector h = r_.d + G_ * modal(t).q;
+  if (D_.size() > 0) h += offset(t, 0);
+  return h;
+}
 
-Vector RegionFlow::rate(double t) const { return G_ * modal(t).qd + offset(t, 1); }
+Vector RegionFlow::rate(double t) const {
+  Vector h = G_ * modal(t).qd;
+  if (D_.size() > 0) h += offset(t, 1);
+  return h;
+}
 
-Vector RegionFlow::curvature(double t) const { return G_ * modal(t).qdd + offset(t, 2); }
+Vector RegionFlow::curvature(double t) const {
+  Vector h = G_ * modal(t).qdd;
+  if (D_.size() > 0) h += offset(t, 2);
+  return h;
+}
 
 Vector RegionFlow::curvature_bound(double t) const {
   const ModalState& m = modal(t);

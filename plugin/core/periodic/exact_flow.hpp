@@ -98,7 +98,8 @@ class RegionFlow : public SwitchingFunctions {
   Eigen::MatrixXcd Q_;       ///< n x harmonics: steady modal amplitudes at local time 0
   Eigen::MatrixXcd D_;       ///< rows x harmonics: switching offsets at local time 0 (or empty)
   Matrix G_, G_abs_;         ///< H Phi and |H Phi|
-  Vector forced_bound_;      ///< per row: sum_k Omega_k^2 (|(G Q_k)_r| + |D_rk|) + sum_rigid |G_rj p_j|
+  /// Per row: sum_k Omega_k^2 (|(G Q_k)_r| + |D_rk|) + sum_rigid |G_rj p_j|.
+  Vector forced_bound_;
   Matrix PhiTM_;
   mutable ModalState last_;
 };

@@ -29,9 +29,10 @@ std::vector<Vector> internal_harmonics(const ContactProblem& problem,
                                        const std::vector<std::vector<double>>& list,
                                        const char* name) {
   std::vector<Vector> out;
-  for (std::size_t k = 0; k < list.size(); ++k)
-    out.push_back(problem.to_internal(user_vector(
-        list[k], problem.n_dofs(), std::string(name) + " (harmonic " + std::to_string(k + 1) + ")")));
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string which = std::string(name) + " (harmonic " + std::to_string(k + 1) + ")";
+    out.push_back(problem.to_internal(user_vector(list[k], problem.n_dofs(), which)));
+  }
   return out;
 }
 

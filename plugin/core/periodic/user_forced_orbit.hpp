@@ -7,8 +7,8 @@
 //     F(t) = F0 + sum_{k=1..H} ( Fc_k cos(k omega t) + Fs_k sin(k omega t) )
 // and the motion of the obstacles, gaps
 //     g(t) = g0 + sum_{k=1..H} ( gc_k cos(k omega t) + gs_k sin(k omega t) )
-// (g0 the problem's gaps, method.md §8), on a damped model C = a_M M + b_K K (M the problem's mass: redistributed
-// with the massless boundary). The orbit has the period 2 pi m / omega and
+// (g0 the problem's gaps, method.md §8), on a damped model C = a_M M + b_K K
+// (M the problem's mass: redistributed with the massless boundary). The orbit has the period 2 pi m / omega and
 // no phase condition (the excitation fixes the time origin). Full interior
 // only: no reduced basis (its reduction residual would have to carry the
 // damping and the harmonic load).
@@ -60,7 +60,8 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
 /// amplitude of the harmonics (forced_continuation.hpp): a frequency- or
 /// amplitude-response curve with stability and events.
 struct ForcedResponseOptions {
-  std::string parameter = "omega";  ///< or "amplitude": a factor on Fc, Fs (1 at the start)
+  /// "omega", or "amplitude": a factor on Fc, Fs and the gap harmonics (1 at the start).
+  std::string parameter = "omega";
   /// The curve starts at the orbit of `omega` (or at the factor 1), heads
   /// towards `to` and stays within [min(from, to), max(from, to)]; `from`
   /// NaN: the start.
