@@ -15,6 +15,7 @@
 
 #include "bilinear_oscillator.hpp"
 #include "errors.hpp"
+#include "forced_continuation.hpp"
 #include "forced_models.hpp"
 #include "forced_orbit.hpp"
 
@@ -248,28 +249,37 @@ TEST(MovingGapOrbit, ATranslatingWallIsABodyLoadOnAFreeBody) {
 // linear steady response of the chain with its last dof driven by the wall,
 //     (K_OO - W^2 M_OO + i W C_OO) U = -(K_OC + i W C_OC) G,
 // C = a_M M + b_K K (M_OC = 0), on top of the static K_OO^-1 (F_O - K_OC g0).
-TEST(MovingGapOrbit, OnAMovingWallTheLinearLimitIsTheDrivenFrequencyResponse) {
+struct HeldChain {
   ForcedChain chain;
-  chain.n = 3;
-  chain.gap = 0.1;
-  const Index n = chain.n;
-  Vector F0 = Vector::Zero(n + 1);
-  F0(n - 1) = 2;  // the reaction at rest: 2 - (static) > 0 by far
-  const auto field = chain.field(F0);
+  Vector F0;
   nbm::Damping damping;
-  damping.a_M = 0.03, damping.b_K = 0.02;
-  const Matrix M = chain.M(), K = chain.K();
-  const Matrix C = damping.a_M * M + damping.b_K * K;
-  const Matrix Moo = M.topLeftCorner(n, n), Koo = K.topLeftCorner(n, n);
-  const Matrix Coo = C.topLeftCorner(n, n);
-  const Vector Koc = K.topRightCorner(n, 1), Coc = C.topRightCorner(n, 1);
-  for (double w : {0.5, 1.7}) {
-    nbm::HarmonicLoad load;
-    load.omega = w;
-    load.gap_cos = {Vector::Constant(1, 0.01), Vector::Constant(1, 0.004)};
-    load.gap_sin = {Vector::Constant(1, -0.006)};
+  HeldChain() {
+    chain.n = 3;
+    chain.gap = 0.1;
+    F0 = Vector::Zero(chain.n + 1);
+    F0(chain.n - 1) = 2;  // the reaction at rest: 2 - (static) > 0 by far
+    damping.a_M = 0.03, damping.b_K = 0.02;
+  }
+  /// The gap harmonics G_k = gc_k - i gs_k of the tests.
+  nbm::HarmonicLoad load(double w) const {
+    nbm::HarmonicLoad l;
+    l.omega = w;
+    l.gap_cos = {Vector::Constant(1, 0.01), Vector::Constant(1, 0.004)};
+    l.gap_sin = {Vector::Constant(1, -0.006)};
+    return l;
+  }
+  /// The static state and the driven response (u, v at t = 0) to load(w),
+  /// solved densely on the interior dofs.
+  void reference(double w, Vector& u_static, Vector& u, Vector& v) const {
+    const Index n = chain.n;
+    const Matrix M = chain.M(), K = chain.K();
+    const Matrix C = damping.a_M * M + damping.b_K * K;
+    const Matrix Moo = M.topLeftCorner(n, n), Koo = K.topLeftCorner(n, n);
+    const Matrix Coo = C.topLeftCorner(n, n);
+    const Vector Koc = K.topRightCorner(n, 1), Coc = C.topRightCorner(n, 1);
     const std::vector<Complex> G = {Complex(0.01, 0.006), Complex(0.004, 0)};
-    Vector u = Koo.ldlt().solve(F0.head(n) - Koc * chain.gap), v = Vector::Zero(n);
+    u_static = Koo.ldlt().solve(F0.head(n) - Koc * chain.gap);
+    u = Vector::Zero(n), v = Vector::Zero(n);
     for (int k = 0; k < 2; ++k) {
       const double W = (k + 1) * w;
       const Eigen::MatrixXcd Z = Koo.cast<Complex>() - W * W * Moo.cast<Complex>() +
@@ -280,13 +290,50 @@ TEST(MovingGapOrbit, OnAMovingWallTheLinearLimitIsTheDrivenFrequencyResponse) {
       u += U.real();
       v += (Complex(0, W) * U).real();
     }
-    const nbm::ExactFlow flow(field, damping, load);
+  }
+};
+
+TEST(MovingGapOrbit, OnAMovingWallTheLinearLimitIsTheDrivenFrequencyResponse) {
+  const HeldChain held;
+  const Index n = held.chain.n;
+  const auto field = held.chain.field(held.F0);
+  for (double w : {0.5, 1.7}) {
+    Vector u_static, u, v;
+    held.reference(w, u_static, u, v);
+    u += u_static;
+    const nbm::ExactFlow flow(field, held.damping, held.load(w));
     const auto orbit = shoot(flow, Vector::Zero(n), Vector::Zero(n));
     EXPECT_TRUE(orbit.switches.empty());
     EXPECT_LE(orbit.iterations, 2) << "the flow is affine: Newton converges in one step";
     EXPECT_LT((orbit.u0 - u).norm(), 1e-10 * u.norm()) << "w " << w;
     EXPECT_LT((orbit.v0 - v).norm(), 1e-10 * std::max(v.norm(), w * u.norm())) << "w " << w;
   }
+}
+
+// The amplitude parameter of the continuation scales the gap harmonics too:
+// along the amplitude curve of the held chain every point is the static
+// state plus s times the driven response.
+TEST(MovingGapOrbit, TheAmplitudeCurveScalesTheGapMotion) {
+  const HeldChain held;
+  const Index n = held.chain.n;
+  const auto field = held.chain.field(held.F0);
+  const double w = 1.1;
+  Vector u_static, u, v;
+  held.reference(w, u_static, u, v);
+  nbm::ForcedContinuationOptions o;
+  o.parameter = nbm::ForcedParameter::amplitude;
+  o.parameter_min = 0.5, o.parameter_max = 3;
+  o.max_points = 12;
+  const auto curve =
+      nbm::continue_forced(field, held.damping, held.load(w), Vector::Zero(n), Vector::Zero(n), o);
+  ASSERT_GE(curve.points.size(), 3u);
+  for (const auto& p : curve.points) {
+    EXPECT_TRUE(p.orbit.switches.empty());
+    EXPECT_LT((p.orbit.u0 - u_static - p.scale * u).norm(), 1e-9 * u_static.norm())
+        << "scale " << p.scale;
+    EXPECT_LT((p.orbit.v0 - p.scale * v).norm(), 1e-9 * w * u_static.norm()) << "scale " << p.scale;
+  }
+  EXPECT_GT(curve.points.back().scale, 1.5);
 }
 
 // Out of reach, the gap's motion changes nothing: the open region's offset
