@@ -132,7 +132,9 @@ std::shared_ptr<const Region> ReducedField::region(const ActiveSet& active) cons
   if (!open.empty()) {
     Eigen::LLT<Matrix> KII(K_(I, I));
     const Matrix AI = -KII.solve(K_(I, O));
-    const Matrix EgI = -KII.solve(K_(I, Act));
+    // No closed contact: no columns (Eigen's triangular solve of a 0-column
+    // right-hand side binds references into null storage, UBSan).
+    const Matrix EgI = Act.empty() ? Matrix(open.size(), 0) : Matrix(-KII.solve(K_(I, Act)));
     const Matrix EFI = KII.solve(Matrix::Identity(open.size(), open.size()));
     for (std::size_t a = 0; a < open.size(); ++a) {
       r->A.row(open[a]) = AI.row(a);
