@@ -24,7 +24,9 @@
 //   nbmOrbitSummary(S, "file.txt");   // the summary, printed and written
 //
 // Forced orbits (method.md §9; core: user_forced_orbit.hpp), under the load
-// F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t):
+// F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t)
+// and moving obstacles, gaps g(t) = g0 + sum_k gapCos(:, k-1) cos(k omega t)
+// + gapSin(:, k-1) sin(k omega t) (g0: the NBM object's gaps, method.md §8):
 //   real T = nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v,  // guess (u, v) at t = 0
 //              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K (+ the NBM
 //                                              // object's damping= matrix, if any);
@@ -35,10 +37,13 @@
 //              transient = 0,                  // periods run from the guess first
 //              iterations = 50,
 //              method = "shooting",            // or "harmonic-balance" (exact
-//              harmonics = 20);                // integration, H harmonics of omega / m)
+//              harmonics = 20,                 // integration, H harmonics of omega / m)
+//              gapCos = gc, gapSin = gs);      // harmonics of the gaps (default: none)
 //   // Fc, Fs: real[int,int] ndof x H (column k-1: harmonic k; either may have
 //   // fewer columns, even 0) or real[int] of size ndof (one harmonic, or size 0:
-//   // none). They must vanish on the contact dofs. u, v hold the orbit's state
+//   // none); on the contact dofs they move the nodal boundary relation like the
+//   // gaps. gapCos, gapSin: of the same kind as Fc, Fs, one row (or entry) per
+//   // contact node (the order of the gaps). u, v hold the orbit's state
 //   // at t = 0 (and at every t = k T: no phase condition, time is the
 //   // excitation's); the period T = 2 pi m / omega is returned. The nbmOrbit*
 //   // functions above read the last forced orbit too (no trivial multiplier:
@@ -50,7 +55,8 @@
 //   // residual, truncation); u, v get the series' state at t = 0.
 //   int n = nbmForcedResponse(S, F0, Fc, Fs, omega, u, v,  // the forced orbit as above,
 //              (the named arguments of nbmForcedOrbit),   // then its response curve
-//              parameter = "omega",            // or "amplitude": a factor on Fc, Fs (1 at start)
+//              parameter = "omega",            // or "amplitude": a factor on Fc, Fs,
+//                                              // gapCos, gapSin (1 at start)
 //              to = pEnd, from = pOther,       // heads towards `to`, stays in [from, to]
 //                                              // (from: default the start)
 //              step = 0.02, maxStep = 0.2,     // arclength steps (scaled unknowns)
@@ -225,8 +231,8 @@ class ForcedCall : public E_F0mps {
       : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {}
 
   /// The inputs, checked; `nargs` begins with the six named arguments of
-  /// forced_options.
-  ForcedInputs gather(Stack s, const Expression* nargs, const char* fn) const {
+  /// forced_options, and holds gapCos, gapSin at `gaps`, `gaps` + 1.
+  ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn) const {
     ForcedInputs in;
     in.h = GetAny<NbmHandle*>((*handle)(s));
     in.solver = &solver_of(in.h, fn);
@@ -239,6 +245,9 @@ class ForcedCall : public E_F0mps {
     in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
     in.cosines = harmonics_of(GetAny<H>((*Fc)(s)), fn, "Fc");
     in.sines = harmonics_of(GetAny<H>((*Fs)(s)), fn, "Fs");
+    if (nargs[gaps]) in.options.gap_cos = harmonics_of(GetAny<H>((*nargs[gaps])(s)), fn, "gapCos");
+    if (nargs[gaps + 1])
+      in.options.gap_sin = harmonics_of(GetAny<H>((*nargs[gaps + 1])(s)), fn, "gapSin");
     return in;
   }
 };
@@ -262,7 +271,7 @@ class ForcedOp : public OneOperator {
 template <class H>
 class ForcedOrbit : public ForcedCall<H> {
  public:
-  static const int n_name_param = 8;
+  static const int n_name_param = 10;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -272,7 +281,7 @@ class ForcedOrbit : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedOrbit";
-    ForcedInputs in = this->gather(s, nargs, fn);
+    ForcedInputs in = this->gather(s, nargs, 8, fn);
     if (nargs[6]) in.options.method = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) in.options.harmonics = static_cast<int>(GetAny<long>((*nargs[7])(s)));
     auto report = guarded(fn, [&] {
@@ -290,6 +299,7 @@ basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
     {"subharmonic", &typeid(long)}, {"probe", &typeid(long)},
     {"transient", &typeid(long)},   {"iterations", &typeid(long)},
     {"method", &typeid(string*)},   {"harmonics", &typeid(long)},
+    {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
 // nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments
@@ -318,7 +328,7 @@ void curve_rows(const std::vector<nbm::ForcedResponsePoint>& points, KNM<double>
 template <class H>
 class ForcedResponse : public ForcedCall<H> {
  public:
-  static const int n_name_param = 20;
+  static const int n_name_param = 22;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -328,7 +338,7 @@ class ForcedResponse : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedResponse";
-    const ForcedInputs in = this->gather(s, nargs, fn);
+    const ForcedInputs in = this->gather(s, nargs, 20, fn);
     nbm::ForcedResponseOptions r;
     if (nargs[6]) r.parameter = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) r.from = GetAny<double>((*nargs[7])(s));
@@ -400,6 +410,7 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"curve", &typeid(KNM<double>*)}, {"events", &typeid(KNM<double>*)},
     {"doubling", &typeid(bool)},    {"doublingAmplitude", &typeid(double)},
     {"doubled", &typeid(KNM<double>*)}, {"doubledFile", &typeid(string*)},
+    {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
 const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {

@@ -110,9 +110,6 @@ TEST(ForcedFlow, UndampedResonanceAndBadExcitationAreNamedErrors) {
   nbm::Damping negative;
   negative.a_M = -1;
   EXPECT_THROW(nbm::ExactFlow(field, negative, load), nbm::InputError);
-  nbm::HarmonicLoad on_contact = load;
-  on_contact.cos = {Vector::Ones(2)};
-  EXPECT_THROW(nbm::ExactFlow(field, nbm::Damping{}, on_contact), nbm::InputError);
   nbm::HarmonicLoad wrong_size = load;
   wrong_size.sin = {Vector::Ones(3)};
   EXPECT_THROW(nbm::ExactFlow(field, nbm::Damping{}, wrong_size), nbm::InputError);

@@ -199,6 +199,11 @@ TEST(StateSpaceFlow, BadDampingMatricesAreNamedErrors) {
     EXPECT_THROW(flow.integrate(Vector::Zero(1), Vector::Zero(1), 1, false), nbm::NumericalError)
         << "c " << c;
   }
+  // Moving gaps need the moving switching offsets of the modal flow.
+  nbm::HarmonicLoad moving = load;
+  moving.gap_cos = {Vector::Constant(1, 0.1)};
+  EXPECT_THROW(nbm::ExactFlow(field, with_matrix(Matrix::Constant(1, 1, 0.3)), moving),
+               nbm::InputError);
   // Harmonic balance carries Rayleigh damping only: a named error, not a
   // silently undamped orbit.
   const nbm::ExactFlow damped(field, with_matrix(Matrix::Constant(1, 1, 0.3)), load);

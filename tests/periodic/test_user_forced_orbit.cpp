@@ -284,8 +284,10 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   with([](ForcedBar& c) { c.o.probe = 99; }, "probe: dof 99 out of range");
   with([](ForcedBar& c) { c.o.transient_periods = -1; }, "transient: expected");
   with([](ForcedBar& c) { c.o.max_iterations = 0; }, "iterations: expected >= 1");
-  with([](ForcedBar& c) { c.Fc[c.bar.N] = 1; },
-       "Fc (harmonic 1): non-zero on the normal component of contact node 0");
+  with([](ForcedBar& c) { c.o.gap_cos = {{0.1, 0.2}}; },
+       "gapCos (harmonic 1): size 2, expected 1 (one value per contact node)");
+  with([](ForcedBar& c) { c.o.gap_sin = {{0}, {NAN}}; },
+       "gapSin (harmonic 2): non-finite entries");
   with([](ForcedBar& c) { c.Fs.pop_back(); }, "Fs (harmonic 1): size 12, expected 13");
   with([](ForcedBar& c) { c.Fs[3] = NAN; }, "Fs (harmonic 1): non-finite");
   with([](ForcedBar& c) { c.F0.push_back(0); }, "F0: size 14, expected 13");
@@ -297,7 +299,7 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
        "harmonics: 2; expected m .. 320 (m = 3");
   expect_input_error(
       [&] { nbm::forced_orbit(*b.problem, b.F0, {}, {}, b.zero, b.zero, b.o); },
-      "Fc, Fs: no load harmonic");
+      "Fc, Fs, gapCos, gapSin: no harmonic");
   auto response = [&](nbm::ForcedResponseOptions r, const std::string& text) {
     expect_input_error(
         [&] { nbm::forced_response(*b.problem, b.F0, {b.Fc}, {b.Fs}, b.zero, b.zero, b.o, r); },

@@ -67,11 +67,48 @@ void rigid_response(double c, double t, double& R, double& Rd) {
 
 }  // namespace
 
-Vector FlowForcing::at(double t) const {
-  Vector f = Vector::Zero(load.empty() ? 0 : load.front().size());
-  for (std::size_t k = 0; k < load.size(); ++k)
-    f += (load[k] * std::exp(Complex(0, Omega[k] * t))).real();
+bool FlowForcing::moves_contacts() const {
+  for (std::size_t k = 0; k < Omega.size(); ++k)
+    if (!gap[k].isZero(0.0) || !contact_load[k].isZero(0.0)) return true;
+  return false;
+}
+
+Eigen::VectorXcd FlowForcing::region_load(const Region& r, std::size_t k) const {
+  if (gap[k].isZero(0.0) && contact_load[k].isZero(0.0)) return load[k];
+  // method.md §9, "Moving obstacles": the offset e_k moves the interior by
+  // P^T (K + i W C - W^2 M) [0; e_k], C = a_M M + b_K K; the load on the
+  // contact dofs enters by P^T F_k = F_O + A^T F_C.
+  const double W = Omega[k];
+  const Eigen::VectorXcd e =
+      r.E_g.cast<Complex>() * gap[k] + r.E_F.cast<Complex>() * contact_load[k];
+  Eigen::VectorXcd f = load[k] + r.A.transpose().cast<Complex>() * contact_load[k] -
+                       Complex(1, W * b_K) * (r.B_K.cast<Complex>() * e);
+  if (r.B_M.size() > 0) f += Complex(W * W, -W * a_M) * (r.B_M.cast<Complex>() * e);
   return f;
+}
+
+Eigen::VectorXcd FlowForcing::region_switching(const Region& r, std::size_t k) const {
+  return r.D_g.cast<Complex>() * gap[k] + r.D_F.cast<Complex>() * contact_load[k];
+}
+
+Vector FlowForcing::at(const Region& r, double t) const {
+  Vector f = Vector::Zero(r.f.size());
+  for (std::size_t k = 0; k < load.size(); ++k)
+    f += (region_load(r, k) * std::exp(Complex(0, Omega[k] * t))).real();
+  return f;
+}
+
+ContactShift FlowForcing::shift(double t, bool rate) const {
+  ContactShift s;
+  if (!moves_contacts()) return s;
+  s.gap = Vector::Zero(gap.front().size());
+  s.load = Vector::Zero(contact_load.front().size());
+  for (std::size_t k = 0; k < Omega.size(); ++k) {
+    const Complex phase = std::exp(Complex(0, Omega[k] * t)) * (rate ? Complex(0, Omega[k]) : 1.0);
+    s.gap += (gap[k] * phase).real();
+    s.load += (contact_load[k] * phase).real();
+  }
+  return s;
 }
 
 RegionFlow::RegionFlow(const Region& region, const FlowForcing& forcing, const Vector& u0,
@@ -99,7 +136,7 @@ RegionFlow::RegionFlow(const Region& region, const FlowForcing& forcing, const V
   zd0_ = qd0;
   for (Index k = 0; k < harmonics; ++k) {
     const double W = Omega_[k];
-    const Eigen::VectorXcd P = PhiT * forcing.load[k];
+    const Eigen::VectorXcd P = PhiT * forcing.region_load(r_, static_cast<std::size_t>(k));
     const Complex phase = std::exp(Complex(0, W * t0));
     for (Index j = 0; j < n; ++j) {
       const Complex denominator(r_.omega2(j) - W * W, c_(j) * W);
@@ -119,6 +156,27 @@ RegionFlow::RegionFlow(const Region& region, const FlowForcing& forcing, const V
   const Eigen::MatrixXcd Gc = G_.cast<Complex>();
   for (Index k = 0; k < harmonics; ++k)
     forced_bound_ += (Omega_[k] * Omega_[k]) * (Gc * Q_.col(k)).cwiseAbs();
+  // Moving contacts: d(t) = d + sum_k Re(D_k exp(i Omega_k t)) (method.md §9).
+  if (forcing.moves_contacts()) {
+    D_.resize(r_.d.size(), harmonics);
+    for (Index k = 0; k < harmonics; ++k) {
+      D_.col(k) = forcing.region_switching(r_, static_cast<std::size_t>(k)) *
+                  std::exp(Complex(0, Omega_[k] * t0));
+      forced_bound_ += (Omega_[k] * Omega_[k]) * D_.col(k).cwiseAbs();
+    }
+  }
+}
+
+Vector RegionFlow::offset(double t, int derivative) const {
+  Vector x = Vector::Zero(r_.d.size());
+  for (Index k = 0; k < D_.cols(); ++k) {
+    const double W = Omega_[k];
+    const Eigen::VectorXcd Dt = D_.col(k) * std::exp(Complex(0, W * t));
+    if (derivative == 0) x += Dt.real();
+    if (derivative == 1) x -= W * Dt.imag();
+    if (derivative == 2) x -= (W * W) * Dt.real();
+  }
+  return x;
 }
 
 void RegionFlow::free_response(double t, Vector& z, Vector& zd) const {
@@ -165,11 +223,23 @@ void RegionFlow::state(double t, Vector& u, Vector& v) const {
   v = r_.modes * m.qd;
 }
 
-Vector RegionFlow::value(double t) const { return r_.d + G_ * modal(t).q; }
+Vector RegionFlow::value(double t) const {
+  Vector h = r_.d + G_ * modal(t).q;
+  if (D_.size() > 0) h += offset(t, 0);
+  return h;
+}
 
-Vector RegionFlow::rate(double t) const { return G_ * modal(t).qd; }
+Vector RegionFlow::rate(double t) const {
+  Vector h = G_ * modal(t).qd;
+  if (D_.size() > 0) h += offset(t, 1);
+  return h;
+}
 
-Vector RegionFlow::curvature(double t) const { return G_ * modal(t).qdd; }
+Vector RegionFlow::curvature(double t) const {
+  Vector h = G_ * modal(t).qdd;
+  if (D_.size() > 0) h += offset(t, 2);
+  return h;
+}
 
 Vector RegionFlow::curvature_bound(double t) const {
   const ModalState& m = modal(t);
@@ -188,7 +258,9 @@ Vector RegionFlow::magnitude(double span) const {
                    : std::abs(z0_(j)) + span * std::abs(zd0_(j)) +
                          0.5 * span * span * std::abs(rigid_load_(j));
   }
-  return r_.d.cwiseAbs() + G_abs_ * m;
+  Vector h = r_.d.cwiseAbs() + G_abs_ * m;
+  if (D_.size() > 0) h += D_.cwiseAbs().rowwise().sum();
+  return h;
 }
 
 Matrix RegionFlow::transition(double t) const {
@@ -241,28 +313,38 @@ ExactFlow::ExactFlow(const ReducedField& field, const Damping& damping, const Ha
   const int harmonics = load.harmonics();
   if (harmonics > 0 && (!(load.omega > 0) || !std::isfinite(load.omega)))
     throw InputError("exact flow: the excitation frequency omega must be finite and > 0");
-  // Harmonic k of cos or sin (zero if the list is shorter), checked.
-  auto harmonic = [&](const std::vector<Vector>& list, const char* name, int k) -> Vector {
-    if (static_cast<std::size_t>(k) >= list.size()) return Vector::Zero(N);
+  const Index nc = field.n_contact();
+  // Harmonic k of a list (zero if the list is shorter), checked: `size`
+  // entries, finite.
+  auto harmonic = [&](const std::vector<Vector>& list, const char* name, int k,
+                      Index size) -> Vector {
+    if (static_cast<std::size_t>(k) >= list.size()) return Vector::Zero(size);
     const Vector& x = list[k];
     const std::string which =
-        std::string("exact flow: load harmonic ") + name + "[" + std::to_string(k) + "]";
-    if (x.size() != N)
+        std::string("exact flow: ") + name + "[" + std::to_string(k) + "]";
+    if (x.size() != size)
       throw InputError(which + " has " + std::to_string(x.size()) + " entries, expected " +
-                       std::to_string(N));
+                       std::to_string(size));
     if (!x.allFinite()) throw InputError(which + " has non-finite entries");
-    if (!x(field.contact()).isZero(0.0))
-      throw InputError(which + " is non-zero on a contact dof (time-varying loads on the "
-                       "contact dofs are not supported by the exact flow yet)");
     return x;
   };
+  auto amplitude = [](const Vector& c, const Vector& s) -> Eigen::VectorXcd {
+    return c.cast<Complex>() - Complex(0, 1) * s.cast<Complex>();
+  };
   for (int k = 0; k < harmonics; ++k) {
-    const Vector c = harmonic(load.cos, "cos", k), s = harmonic(load.sin, "sin", k);
+    const Vector c = harmonic(load.cos, "load harmonic cos", k, N),
+                 s = harmonic(load.sin, "load harmonic sin", k, N);
+    const Vector gc = harmonic(load.gap_cos, "gap harmonic cos", k, nc),
+                 gs = harmonic(load.gap_sin, "gap harmonic sin", k, nc);
     forcing_.Omega.push_back((k + 1) * load.omega);
-    forcing_.load.push_back(c(field.interior()).cast<std::complex<double>>() -
-                            std::complex<double>(0, 1) *
-                                s(field.interior()).cast<std::complex<double>>());
+    forcing_.load.push_back(amplitude(c(field.interior()), s(field.interior())));
+    forcing_.contact_load.push_back(amplitude(c(field.contact()), s(field.contact())));
+    forcing_.gap.push_back(amplitude(gc, gs));
   }
+  if (forcing_.C_interior && forcing_.moves_contacts())
+    throw InputError("exact flow: moving gaps or loads on the contact dofs with an assembled "
+                     "damping matrix are not supported (the state-space flow has no moving "
+                     "switching offsets); use Rayleigh damping");
 }
 
 ExactFlow ExactFlow::with_load(const HarmonicLoad& load) const {
@@ -303,7 +385,7 @@ Vector ExactFlow::acceleration(const Region& region, const Vector& u, const Vect
   // M_S u'' = f_S + F_h(t) - K_S u - (a_M M_S + b_K K_S + C_OO) u'.
   Vector rhs = region.f - region.K * (u + forcing_.b_K * v);
   if (forcing_.C_interior) rhs -= *forcing_.C_interior * v;
-  if (!forcing_.load.empty()) rhs += forcing_.at(t);
+  if (!forcing_.load.empty()) rhs += forcing_.at(region, t);
   return region.mass.solve(rhs) - forcing_.a_M * v;
 }
 
@@ -318,7 +400,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
   FlowResult out;
   out.u = u0;
   out.v = v0;
-  out.active = field_.active_set(u0);
+  out.active = field_.active_set(u0, forcing_.shift(t0));
   if (sensitivity) out.monodromy = Matrix::Identity(2 * n, 2 * n);
   out.samples.resize(2 * n, static_cast<Index>(sample_times.size()));
   std::size_t next_sample = 0;
@@ -345,14 +427,16 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     t += tau;
     if (!crossing) break;
 
-    const ActiveSet next = field_.switched(region, out.u, out.v, crossing->row);
+    const ActiveSet next = field_.switched(region, out.u, out.v, crossing->row,
+                                           forcing_.shift(t0 + t), forcing_.shift(t0 + t, true));
     if (sensitivity) {
-      // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f-) with
-      // n = (H_j, 0), f = (v, a); only the acceleration jumps (with the mass
-      // of the contact dofs, or a stiffness-proportional damping).
+      // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f- + h_t)
+      // with n = (H_j, 0), f = (v, a), h_t = d_j'(t) of moving contacts; only
+      // the acceleration jumps (with the mass of the contact dofs, a
+      // stiffness-proportional damping or moving contacts, method.md §9).
       const Vector jump = acceleration(*field_.region(next), out.u, out.v, t0 + t) -
                           acceleration(region, out.u, out.v, t0 + t);
-      const double rate = region.H.row(crossing->row).dot(out.v);
+      const double rate = piece.rate(tau)(crossing->row);
       if (jump.norm() > 0 && rate != 0)
         out.monodromy.bottomRows(n) +=
             (jump / rate) * (region.H.row(crossing->row) * out.monodromy.topRows(n));

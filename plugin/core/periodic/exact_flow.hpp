@@ -20,9 +20,11 @@
 namespace nbm {
 
 /// What the region flows need of the excitation: the Rayleigh coefficients
-/// (C_S = a_M M_S + b_K K_S on every region, method.md §9) and the
-/// harmonics of the load on the interior dofs, F_O(t) - F0_O =
-/// sum_k Re(load_k exp(i Omega_k t)) with load_k = cos_k - i sin_k.
+/// (C_S = a_M M_S + b_K K_S on every region, method.md §9), the harmonics of
+/// the load on the interior dofs, F_O(t) - F0_O = sum_k Re(load_k
+/// exp(i Omega_k t)) with load_k = cos_k - i sin_k, and likewise those of the
+/// load on the contact dofs and of the gaps (one entry per contact; empty
+/// vectors if the contacts do not move, method.md §8).
 struct FlowForcing {
   double a_M = 0, b_K = 0;
   /// The interior block C_OO of an assembled damping matrix (dense n x n; it
@@ -30,9 +32,21 @@ struct FlowForcing {
   /// region); null without one.
   std::shared_ptr<const Matrix> C_interior;
   std::vector<double> Omega;
-  std::vector<Eigen::VectorXcd> load;
-  /// The harmonic part of the interior load at time t.
-  Vector at(double t) const;
+  std::vector<Eigen::VectorXcd> load, contact_load, gap;
+
+  /// Whether the gaps or the contact loads vary in time.
+  bool moves_contacts() const;
+  /// The complex amplitude of harmonic k of the interior load on a region:
+  /// P^T (F_k - K e_k - i Omega_k C e_k + Omega_k^2 M e_k) with
+  /// e_k = E_g gap_k + E_F contact_load_k (method.md §9, "Moving obstacles").
+  Eigen::VectorXcd region_load(const Region& region, std::size_t k) const;
+  /// The complex amplitude of harmonic k of the region's switching offset d.
+  Eigen::VectorXcd region_switching(const Region& region, std::size_t k) const;
+  /// The harmonic part of the interior load on a region at time t.
+  Vector at(const Region& region, double t) const;
+  /// The shift of the gaps and contact loads at time t (with `rate`, its
+  /// time derivative); empty if the contacts do not move.
+  ContactShift shift(double t, bool rate = false) const;
 };
 
 /// The flow on one region in closed form: the state at local time t, the
@@ -50,7 +64,10 @@ class FlowPiece : public SwitchingFunctions {
 /// c = a_M + b_K w^2, solved in closed form: a stationary (or, for a rigid
 /// mode, zero-state) response to p, a steady harmonic response
 /// P_k / (w^2 - Omega_k^2 + i c Omega_k) per harmonic, and the damped free
-/// response (under-, critically or over-damped) of what remains.
+/// response (under-, critically or over-damped) of what remains. The
+/// region's switching functions h(t) = H u(t) + d + sum_k Re(D_k
+/// exp(i Omega_k t)) (D_k from moving gaps and contact loads) are this
+/// object's.
 class RegionFlow : public FlowPiece {
  public:
   /// Throws NumericalError if an undamped mode is in resonance with a
@@ -66,7 +83,8 @@ class RegionFlow : public FlowPiece {
   Vector curvature(double t) const override;
   /// sum_j |G_j| sqrt(c_j^2 + w_j^2) sqrt(E_j(t)), with E_j = z'^2 + w^2 z^2
   /// the energy of mode j's free response z (non-increasing: E' = -2 c z'^2),
-  /// plus the bounds of the forced and rigid-mode parts; G = H Phi.
+  /// plus the bounds of the forced and rigid-mode parts and Omega_k^2 |D_k|
+  /// of the moving contacts; G = H Phi.
   Vector curvature_bound(double t) const override;
   Vector magnitude(double span) const override;
 
@@ -79,6 +97,9 @@ class RegionFlow : public FlowPiece {
     Vector z, zd, q, qd, qdd;
   };
   const ModalState& modal(double t) const;
+  /// The moving contacts' part of d(t) at local time t, or its first or
+  /// second derivative.
+  Vector offset(double t, int derivative) const;
   void free_response(double t, Vector& z, Vector& zd) const;
 
   const Region& r_;
@@ -89,8 +110,10 @@ class RegionFlow : public FlowPiece {
   Vector z0_, zd0_;          ///< initial state of the free response
   std::vector<double> Omega_;
   Eigen::MatrixXcd Q_;       ///< n x harmonics: steady modal amplitudes at local time 0
+  Eigen::MatrixXcd D_;       ///< rows x harmonics: switching offsets at local time 0 (or empty)
   Matrix G_, G_abs_;         ///< H Phi and |H Phi|
-  Vector forced_bound_;      ///< per row: sum_k Omega_k^2 |(G Q_k)_r| + sum_rigid |G_rj p_j|
+  /// Per row: sum_k Omega_k^2 (|(G Q_k)_r| + |D_rk|) + sum_rigid |G_rj p_j|.
+  Vector forced_bound_;
   Matrix PhiTM_;
   mutable ModalState last_;
 };
@@ -117,12 +140,13 @@ class ExactFlow {
  public:
   /// The undamped flow under the field's constant load.
   explicit ExactFlow(const ReducedField& field) : field_(field) {}
-  /// With damping and a harmonic load (harmonic_load.hpp). Throws
-  /// InputError on negative or non-finite Rayleigh coefficients, on an
-  /// assembled damping matrix of the wrong size, non-finite, or non-zero on
-  /// a contact dof (its rows and columns there would make the reactions
-  /// depend on the velocities), on harmonics of the wrong size, non-finite,
-  /// or non-zero on a contact dof, and on omega <= 0 with harmonics. With an
+  /// With damping and a harmonic excitation (harmonic_load.hpp: load and
+  /// gaps). Throws InputError on negative or non-finite Rayleigh
+  /// coefficients, on an assembled damping matrix of the wrong size,
+  /// non-finite, or non-zero on a contact dof (its rows and columns there
+  /// would make the reactions depend on the velocities), on harmonics of the
+  /// wrong size or non-finite, on omega <= 0 with harmonics, and on moving
+  /// gaps or contact loads together with an assembled matrix. With an
   /// assembled matrix the region flows are state_space_flow.hpp's.
   ExactFlow(const ReducedField& field, const Damping& damping, const HarmonicLoad& load);
   /// The same field and damping under another harmonic load (continuation

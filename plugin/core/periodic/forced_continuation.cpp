@@ -171,9 +171,11 @@ class ScaledProblem {
     for (int k = 0; k < kSamples; ++k) {
       const Vector uk = r.samples.col(k).head(n_);
       pt.peak = pt.peak.cwiseMax(uk.cwiseAbs());
-      const Vector full = field_.expand(uk);
+      const ContactShift shift = f.forcing().shift(times[k]);
+      const Vector full = field_.expand(uk, shift);
       for (Index c = 0; c < field_.n_contact(); ++c)
-        pt.min_gap = std::min(pt.min_gap, field_.gaps()(c) - full(field_.contact()[c]));
+        pt.min_gap = std::min(pt.min_gap, field_.gaps()(c) + (shift.empty() ? 0 : shift.gap(c)) -
+                                              full(field_.contact()[c]));
     }
     pt.min_gap = std::max(pt.min_gap, 0.0);  // round-off of a closed contact
     return pt;
@@ -238,8 +240,8 @@ HarmonicLoad forced_load(const HarmonicLoad& load, ForcedParameter parameter, do
   if (parameter == ForcedParameter::frequency) {
     out.omega = p;
   } else {
-    for (auto& c : out.cos) c *= p;
-    for (auto& s : out.sin) s *= p;
+    for (auto* list : {&out.cos, &out.sin, &out.gap_cos, &out.gap_sin})
+      for (auto& x : *list) x *= p;
   }
   return out;
 }

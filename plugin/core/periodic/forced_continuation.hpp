@@ -6,7 +6,8 @@
 // A point is a fixed point x0 = (u0, v0) of the period map of the exact flow
 // (forced_orbit.hpp) at a parameter p: the forcing frequency omega
 // (T = 2 pi m / omega changes with it) or a scale factor on the harmonics of
-// the HarmonicLoad (the constant load F0 of the field is not scaled).
+// the HarmonicLoad, load and gaps (the constant load F0 and gaps g0 of the
+// field are not scaled).
 // Pseudo-arclength on the scaled unknowns (u0 / L, v0 / (L omega_0), p / P):
 // tangent predictor, Newton corrector on the bordered system
 //
@@ -30,7 +31,7 @@ namespace nbm {
 
 enum class ForcedParameter {
   frequency,  ///< omega of the HarmonicLoad
-  amplitude   ///< scale factor s on its harmonics (cos_k, sin_k -> s cos_k, s sin_k)
+  amplitude   ///< scale factor s on its harmonics, of the load and of the gaps (x_k -> s x_k)
 };
 
 /// The load at parameter value p: `load` with omega = p (frequency) or its

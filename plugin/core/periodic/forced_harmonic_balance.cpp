@@ -41,6 +41,9 @@ HarmonicBalanceResult forced_harmonic_balance(const ExactFlow& flow, const Vecto
   if (!u0.allFinite() || !v0.allFinite())
     throw InputError("forced harmonic balance: non-finite initial state");
   const double T = forced_period(flow, o.subharmonic);  // checks the load and m
+  if (flow.forcing().moves_contacts())
+    throw InputError("forced harmonic balance: moving gaps or loads on the contact dofs are not "
+                     "supported (the Galerkin residual has fixed regions' loads); use shooting");
   if (flow.forcing().C_interior)
     throw InputError("forced harmonic balance: an assembled damping matrix is not supported "
                      "(the Galerkin operator carries Rayleigh damping only); use shooting");

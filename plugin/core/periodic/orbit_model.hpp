@@ -47,8 +47,11 @@ struct OrbitModel {
   /// Internal vector of interior values (contact dofs zero).
   Vector internal(const Vector& interior_values) const;
   /// User vector of field unknowns: displacement (contact dofs from the
-  /// nodal boundary relation) or, with `v` given, the velocity.
-  Vector user(const Vector& u, const Vector* v = nullptr) const;
+  /// nodal boundary relation) or, with `v` given, the velocity; at time t
+  /// along `flow` (default: the forced flow, if any), whose contacts may
+  /// move (method.md §8).
+  Vector user(const Vector& u, const Vector* v = nullptr, double t = 0,
+              const ExactFlow* flow = nullptr) const;
 };
 
 /// A user vector of size n, checked: InputError naming it on a wrong size

@@ -56,15 +56,19 @@ void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous)
   const Index n = field.size();
   double c = 0;
   for (Index k = 0; k < kSamples; ++k)
-    c = std::max(c, field.complementarity_residual(r.samples.col(k).head(n)));
+    c = std::max(c, field.complementarity_residual(r.samples.col(k).head(n),
+                                                   flow.forcing().shift(times[k])));
   orbit.complementarity_residual = c;
-  orbit.energy_start = field.energies(orbit.u0, orbit.v0);
-  orbit.energy_end = field.energies(r.u, r.v);
+  // Moving contacts (method.md §8) shift the relation's offset e(t).
+  const FlowForcing& forcing = flow.forcing();
+  orbit.energy_start =
+      field.energies(orbit.u0, orbit.v0, forcing.shift(0), forcing.shift(0, true));
+  orbit.energy_end = field.energies(r.u, r.v, forcing.shift(T), forcing.shift(T, true));
   orbit.switches = r.switches;
 
   // Time with a closed contact: sum over the intervals between switches.
   auto any_closed = [](const ActiveSet& s) { return std::find(s.begin(), s.end(), true) != s.end(); };
-  ActiveSet current = field.active_set(orbit.u0);
+  ActiveSet current = field.active_set(orbit.u0, forcing.shift(0));
   double t_prev = 0;
   orbit.contact_time = 0;
   for (const auto& s : r.switches) {

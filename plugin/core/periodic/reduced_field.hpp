@@ -13,6 +13,12 @@
 // continuous across region boundaries. M_S jumps there unless the boundary
 // is massless (M_CC = 0, M_CO = 0), when M_S = M_OO for every S.
 //
+// Moving obstacles and time-varying loads on the contact dofs (method.md §8)
+// shift the gaps and the contact loads by (dg(t), dF_C(t)) (ContactShift):
+// e, f_S and d move linearly with them (Region::E_g, E_F, B_K, B_M, D_g, D_F),
+// A, H, M_S and K_S do not. The region stays the one of the fixed setup
+// (g, F); whoever integrates adds the shift (exact_flow.hpp).
+//
 // Matrices are dense: the periodic-orbit solvers are meant for models of up
 // to a few thousand interior dofs.
 #pragma once
@@ -43,10 +49,29 @@ struct Region {
   Matrix modes;    ///< Phi: K_S Phi = M_S Phi diag(omega2), Phi^T M_S Phi = I
   Vector omega2;   ///< squared circular frequencies, >= 0
   Eigen::LLT<Matrix> mass;  ///< Cholesky factor of M_S
+  /// The response of the relation to shifted gaps dg and contact loads dF_C
+  /// (method.md §8): e moves by E_g dg + E_F dF_C, d by D_g dg + D_F dF_C
+  /// (n_contact x n_contact each), and P^T K [0; de] = B_K de,
+  /// P^T M [0; de] = B_M de (n x n_contact; B_M = 0 with the massless
+  /// boundary, stored empty then).
+  Matrix E_g, E_F, D_g, D_F, B_K, B_M;
 
   /// u_O'' = M_S^-1 (f_S - K_S u_O).
   Vector acceleration(const Vector& u) const { return mass.solve(f - K * u); }
 };
+
+/// Shifts of the gaps and of the loads on the contact dofs from those of the
+/// ReducedField (one entry per contact, in the order of contact()); an empty
+/// vector is no shift.
+struct ContactShift {
+  Vector gap, load;
+  bool empty() const { return gap.size() == 0 && load.size() == 0; }
+};
+
+/// The shift of a region's switching offset d (or, with `offset`, of its
+/// relation offset e) under a contact shift.
+Vector switching_shift(const Region& region, const ContactShift& shift);
+Vector offset_shift(const Region& region, const ContactShift& shift);
 
 class ReducedField {
  public:
@@ -86,31 +111,40 @@ class ReducedField {
   std::size_t region_cache_size() const { return regions_.size(); }  ///< regions cached
   /// Bytes of a region's dense matrices and vectors (what the budget counts).
   static std::size_t bytes_of(const Region& r);
-  /// The active set of the nodal boundary relation (LCP) at u_O.
-  ActiveSet active_set(const Vector& u) const;
+  /// The active set of the nodal boundary relation (LCP) at u_O, with the
+  /// gaps and contact loads shifted by `shift`.
+  ActiveSet active_set(const Vector& u, const ContactShift& shift = {}) const;
   /// The active set entered when the switching function `row` of the region
   /// `before` reaches zero at u_O moving along v_O (v_O may be any tangent,
   /// e.g. du/dtau): `row` flips, with every other row at zero and decreasing;
   /// if that set is not entered along v_O (a degenerate switch), the LCP just
-  /// past u_O decides. Throws NumericalError if no new set is found.
-  ActiveSet switched(const Region& before, const Vector& u, const Vector& v, Index row) const;
+  /// past u_O decides. Throws NumericalError if no new set is found. With
+  /// moving obstacles, `shift` and its time derivative `shift_rate` at the
+  /// switch: the rates of the switching functions are H v + d'(t).
+  ActiveSet switched(const Region& before, const Vector& u, const Vector& v, Index row,
+                     const ContactShift& shift = {}, const ContactShift& shift_rate = {}) const;
   /// u_O'' at u_O, on the region of the LCP's active set.
   Vector acceleration(const Vector& u) const;
 
   /// Internal vector (size N) from u_O: u_C = A u_O + e on the region of
-  /// u_O's active set. With `velocity`, the same for v_O (v_C = A v_O).
-  Vector expand(const Vector& u) const;
-  Vector expand_velocity(const Vector& u, const Vector& v) const;
+  /// u_O's active set (e and the set shifted by `shift`). With `velocity`,
+  /// the same for v_O (v_C = A v_O + e', e' from the shift's rate).
+  Vector expand(const Vector& u, const ContactShift& shift = {}) const;
+  Vector expand_velocity(const Vector& u, const Vector& v, const ContactShift& shift = {},
+                         const ContactShift& shift_rate = {}) const;
   /// u_O from an internal vector.
   Vector restrict(const Vector& u_internal) const;
 
   /// Kinetic, elastic and load-potential energy (method.md §7) of the
-  /// internal state (u, v) = (P u_O + e, P v_O), and their sum.
-  Eigen::Vector4d energies(const Vector& u, const Vector& v) const;
-  /// Complementarity residual of the nodal boundary relation at u_O:
-  /// max_i |min(gap_i, lambda_i)| relative to the scales of g and lambda
-  /// (zero up to round-off by construction; reported as a check).
-  double complementarity_residual(const Vector& u) const;
+  /// internal state (u, v) = (P u_O + e, P v_O + e'), and their sum (the
+  /// load potential of the field's constant load F).
+  Eigen::Vector4d energies(const Vector& u, const Vector& v, const ContactShift& shift = {},
+                           const ContactShift& shift_rate = {}) const;
+  /// Complementarity residual of the nodal boundary relation at u_O (gaps
+  /// and contact loads shifted by `shift`): max_i |min(gap_i, lambda_i)|
+  /// relative to the scales of g and lambda (zero up to round-off by
+  /// construction; reported as a check).
+  double complementarity_residual(const Vector& u, const ContactShift& shift = {}) const;
 
  private:
   Matrix M_, K_;

@@ -22,31 +22,33 @@ std::string number(double x) {
   return s.str();
 }
 
-// The harmonics of one list (Fc or Fs) in internal coordinates, checked:
-// size, finite, zero on the normal component of every contact node. A
-// rotated contact node rounds (ContactProblem::exact_round_trip): a load
-// that is tangential there keeps a round-off normal part, which is dropped.
+// The harmonics of one load list (Fc or Fs) in internal coordinates,
+// checked (size, finite). On the contact dofs they move the relation's
+// offset e(t) (method.md §8), which the exact flow follows.
 std::vector<Vector> internal_harmonics(const ContactProblem& problem,
                                        const std::vector<std::vector<double>>& list,
                                        const char* name) {
   std::vector<Vector> out;
   for (std::size_t k = 0; k < list.size(); ++k) {
-    const std::string which =
-        std::string(name) + " (harmonic " + std::to_string(k + 1) + ")";
-    const Vector x = problem.to_internal(user_vector(list[k], problem.n_dofs(), which));
-    const double round_off = 1e-14 * x.cwiseAbs().maxCoeff();
-    Vector y = x;
-    for (Index j = 0; j < problem.n_contact(); ++j) {
-      const Index c = problem.contact_index()[j];
-      if (std::abs(x(c)) > round_off)
-        throw InputError(which + ": non-zero on the normal component of contact node " +
-                         std::to_string(j) + " (" + number(x(c)) +
-                         "); the load harmonics must vanish on the contact dofs (a time-varying "
-                         "load there moves the nodal boundary relation, which the exact flow "
-                         "does not model yet, method.md §9)");
-      y(c) = 0;
-    }
-    out.push_back(std::move(y));
+    const std::string which = std::string(name) + " (harmonic " + std::to_string(k + 1) + ")";
+    out.push_back(problem.to_internal(user_vector(list[k], problem.n_dofs(), which)));
+  }
+  return out;
+}
+
+// The harmonics of one gap list (gapCos or gapSin): one value per contact
+// node, in the order of the problem's gaps, checked (size, finite).
+std::vector<Vector> gap_harmonics(const ContactProblem& problem,
+                                  const std::vector<std::vector<double>>& list, const char* name) {
+  std::vector<Vector> out;
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const std::string which = std::string(name) + " (harmonic " + std::to_string(k + 1) + ")";
+    const Index n = problem.n_contact();
+    if (static_cast<Index>(list[k].size()) != n)
+      throw InputError(which + ": size " + std::to_string(list[k].size()) + ", expected " +
+                       std::to_string(n) + " (one value per contact node)");
+    out.push_back(Eigen::Map<const Vector>(list[k].data(), n));
+    if (!out.back().allFinite()) throw InputError(which + ": non-finite entries");
   }
   return out;
 }
@@ -121,9 +123,11 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
   f.load.omega = o.omega;
   f.load.cos = internal_harmonics(problem, load_cos, "Fc");
   f.load.sin = internal_harmonics(problem, load_sin, "Fs");
+  f.load.gap_cos = gap_harmonics(problem, o.gap_cos, "gapCos");
+  f.load.gap_sin = gap_harmonics(problem, o.gap_sin, "gapSin");
   if (f.load.harmonics() == 0)
-    throw InputError("Fc, Fs: no load harmonic; expected at least one (without excitation the "
-                     "damped model's only periodic orbit is its equilibrium)");
+    throw InputError("Fc, Fs, gapCos, gapSin: no harmonic; expected at least one (without "
+                     "excitation the damped model's only periodic orbit is its equilibrium)");
   check_amplitude_probe(problem, o.probe);
   const Index interior = problem.size() - problem.n_contact();
   if (interior > periodic_max_dense_dofs)
@@ -150,7 +154,8 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
   method.precision(12);
   method << "forced orbit: omega " << omega << ", subharmonic m = " << o.subharmonic
          << ", Rayleigh damping a_M " << o.rayleigh_mass << ", b_K " << o.rayleigh_stiffness
-         << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", " << harmonics << " load harmonic(s)\n"
+         << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", "
+         << harmonics << " harmonic(s) of the excitation\n"
          << method_line << "\n";
   const OrbitSamples s = sample_orbit(*model, *model->forced, orbit);
   report = describe(model, orbit, std::move(report), method.str());

@@ -6,9 +6,12 @@
 //
 // The excitation is the load
 //     F(t) = F0 + sum_{k=1..H} ( Fc_k cos(k omega t) + Fs_k sin(k omega t) )
-// on a damped model C = a_M M + b_K K + C_user (M the problem's mass:
-// redistributed with the massless boundary; C_user an assembled matrix that
-// vanishes on the contact dofs). The orbit has the period 2 pi m / omega and
+// and the motion of the obstacles, gaps
+//     g(t) = g0 + sum_{k=1..H} ( gc_k cos(k omega t) + gs_k sin(k omega t) )
+// (g0 the problem's gaps, method.md §8), on a damped model C = a_M M + b_K K
+// + C_user (M the problem's mass: redistributed with the massless boundary;
+// C_user an assembled matrix that vanishes on the contact dofs). The orbit
+// has the period 2 pi m / omega and
 // no phase condition (the excitation fixes the time origin). Full interior
 // only: no reduced basis (its reduction residual would have to carry the
 // damping and the harmonic load).
@@ -45,17 +48,21 @@ struct ForcedOrbitOptions {
   /// the Galerkin residual and the truncation estimate).
   std::string method = "shooting";
   int harmonics = 20;
+  /// Harmonics of the gaps: gap_cos[k], gap_sin[k] (harmonic k + 1) hold
+  /// one value per contact node (the problem's gap order); either list may
+  /// be shorter than the other or empty (fixed obstacles).
+  std::vector<std::vector<double>> gap_cos, gap_sin;
 };
 
 /// The forced orbit from the guess (u, v) at t = 0 (user vectors). F0 and
 /// every harmonic are user vectors (size n_dofs); `load_cos[k]`,
 /// `load_sin[k]` are the harmonic k + 1, either list may be shorter (zero
-/// harmonics) but not both empty; the harmonics must vanish on the normal
-/// components of the contact nodes (the exact flow does not model a
-/// time-varying offset of the nodal boundary relation, method.md §9).
-/// Throws InputError naming the argument (F0, Fc, Fs, u, v, omega,
-/// subharmonic, rayleighM, rayleighK, probe, transient, iterations, method,
-/// harmonics),
+/// harmonics); with the gap harmonics of the options, not all empty. A load
+/// harmonic on the normal component of a contact node moves the nodal
+/// boundary relation like a gap harmonic (method.md §8).
+/// Throws InputError naming the argument (F0, Fc, Fs, gapCos, gapSin, u, v,
+/// omega, subharmonic, rayleighM, rayleighK, probe, transient, iterations,
+/// method, harmonics),
 /// NumericalError if Newton does not converge or an undamped mode is in
 /// resonance with a harmonic.
 OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double>& F0,
@@ -68,7 +75,8 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
 /// amplitude of the harmonics (forced_continuation.hpp): a frequency- or
 /// amplitude-response curve with stability and events.
 struct ForcedResponseOptions {
-  std::string parameter = "omega";  ///< or "amplitude": a factor on Fc, Fs (1 at the start)
+  /// "omega", or "amplitude": a factor on Fc, Fs and the gap harmonics (1 at the start).
+  std::string parameter = "omega";
   /// The curve starts at the orbit of `omega` (or at the factor 1), heads
   /// towards `to` and stays within [min(from, to), max(from, to)]; `from`
   /// NaN: the start.

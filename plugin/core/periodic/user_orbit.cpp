@@ -61,9 +61,12 @@ OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
   s.lo = Vector::Constant(N, INFINITY), s.hi = Vector::Constant(N, -INFINITY);
   for (Index k = 0; k < r.samples.cols(); ++k) {
     const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);
-    const Vector user = model.user(uk);
+    // Moving contacts (method.md §8): the contact dofs and the energy at t.
+    const double t = times[static_cast<std::size_t>(k)];
+    const Vector user = model.user(uk, nullptr, t, &flow);
     s.lo = s.lo.cwiseMin(user), s.hi = s.hi.cwiseMax(user);
-    s.energy_max = std::max(s.energy_max, field.energies(uk, vk)(3));
+    s.energy_max = std::max(s.energy_max, field.energies(uk, vk, flow.forcing().shift(t),
+                                                         flow.forcing().shift(t, true))(3));
   }
   return s;
 }
@@ -104,9 +107,13 @@ Vector OrbitModel::internal(const Vector& interior_values) const {
   return x;
 }
 
-Vector OrbitModel::user(const Vector& u, const Vector* v) const {
+Vector OrbitModel::user(const Vector& u, const Vector* v, double t,
+                        const ExactFlow* flow) const {
   const ReducedField& f = field();
-  const Vector y = v ? f.expand_velocity(u, *v) : f.expand(u);
+  if (!flow) flow = forced.get();
+  const ContactShift shift = flow ? flow->forcing().shift(t) : ContactShift{};
+  const ContactShift rate = flow ? flow->forcing().shift(t, true) : ContactShift{};
+  const Vector y = v ? f.expand_velocity(u, *v, shift, rate) : f.expand(u, shift);
   if (!basis) return problem.to_user(y);
   const Index r = basis->size();
   Vector x = internal(basis->expand(y.head(r)));
@@ -306,8 +313,8 @@ void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,
   u.clear(), v.clear();
   for (Index k = 0; k < r.samples.cols(); ++k) {
     const Vector uk = r.samples.col(k).head(n), vk = r.samples.col(k).tail(n);
-    u.push_back(to_std(m.user(uk)));
-    v.push_back(to_std(m.user(uk, &vk)));
+    u.push_back(to_std(m.user(uk, nullptr, times[k])));
+    v.push_back(to_std(m.user(uk, &vk, times[k])));
   }
 }
 
