@@ -121,6 +121,25 @@ inline Vector reference_flow(const Matrix& M, const Matrix& C, const Matrix& K, 
   return (E * z).head(2 * n);
 }
 
+/// The monodromy of `flow` over [t0, t0 + T] from (u0, v0) by central
+/// differences of the flow map (step eps in every state component): the
+/// reference of the monodromy through switches.
+inline Matrix monodromy_by_differences(const nbm::ExactFlow& flow, const Vector& u0,
+                                       const Vector& v0, double T, double t0,
+                                       double eps = 1e-6) {
+  const Index n = u0.size();
+  Matrix fd(2 * n, 2 * n);
+  for (Index j = 0; j < 2 * n; ++j) {
+    Vector up = u0, vp = v0, um = u0, vm = v0;
+    (j < n ? up(j) : vp(j - n)) += eps;
+    (j < n ? um(j) : vm(j - n)) -= eps;
+    const auto p = flow.integrate(up, vp, T, false, {}, t0);
+    const auto m = flow.integrate(um, vm, T, false, {}, t0);
+    fd.col(j) << (p.u - m.u) / (2 * eps), (p.v - m.v) / (2 * eps);
+  }
+  return fd;
+}
+
 /// The internal load vector (size n + 1, zero on the contact dof) of
 /// interior values.
 inline Vector internal(const Vector& interior) {

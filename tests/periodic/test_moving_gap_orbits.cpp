@@ -120,17 +120,7 @@ void expect_moving_monodromy_matches_differences(double mB, double a_M, double b
   const double T = 13, t0 = 0.4;
   const auto r = flow.integrate(u0, v0, T, true, {}, t0);
   ASSERT_GE(r.switches.size(), 4u);
-  Matrix fd(2, 2);
-  const double eps = 1e-6;
-  for (int j = 0; j < 2; ++j) {
-    Vector up = u0, vp = v0, um = u0, vm = v0;
-    (j == 0 ? up : vp)(0) += eps;
-    (j == 0 ? um : vm)(0) -= eps;
-    const auto p = flow.integrate(up, vp, T, false, {}, t0);
-    const auto m = flow.integrate(um, vm, T, false, {}, t0);
-    fd(0, j) = (p.u(0) - m.u(0)) / (2 * eps);
-    fd(1, j) = (p.v(0) - m.v(0)) / (2 * eps);
-  }
+  const Matrix fd = nbm_test::monodromy_by_differences(flow, u0, v0, T, t0);
   EXPECT_LT((r.monodromy - fd).norm(), 1e-7 * fd.norm()) << "mB " << mB << " b_K " << b_K << "\n"
                                                           << r.monodromy << "\n"
                                                           << fd;

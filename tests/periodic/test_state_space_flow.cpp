@@ -129,16 +129,7 @@ TEST(StateSpaceFlow, MonodromyThroughSwitchesMatchesFiniteDifferences) {
   const double T = 17, t0 = 0.3;
   const auto r = flow.integrate(u0, v0, T, true, {}, t0);
   ASSERT_GE(r.switches.size(), 4u);
-  Matrix fd(2 * n, 2 * n);
-  const double eps = 1e-6;
-  for (Index j = 0; j < 2 * n; ++j) {
-    Vector up = u0, vp = v0, um = u0, vm = v0;
-    (j < n ? up(j) : vp(j - n)) += eps;
-    (j < n ? um(j) : vm(j - n)) -= eps;
-    const auto p = flow.integrate(up, vp, T, false, {}, t0);
-    const auto m = flow.integrate(um, vm, T, false, {}, t0);
-    fd.col(j) << (p.u - m.u) / (2 * eps), (p.v - m.v) / (2 * eps);
-  }
+  const Matrix fd = nbm_test::monodromy_by_differences(flow, u0, v0, T, t0);
   EXPECT_LT((r.monodromy - fd).norm(), 1e-6 * fd.norm()) << r.monodromy << "\n\n" << fd;
 }
 
@@ -169,7 +160,9 @@ TEST(StateSpaceFlow, ForcedOrbitWithContactIsTheSteadyStateOfBruteForceIntegrati
     EXPECT_LT((x1 - x0).norm(), 1e-8 * x0.norm()) << "w " << w << ": RK4 over one period";
     const bool settled = (chain.integrate_damped(Cm, Fc, w, x, 1, 8000) - x).norm() < 1e-6;
     EXPECT_EQ(orbit.stable, settled) << "w " << w;
-    if (settled) EXPECT_LT((x - x0).norm(), 1e-6 * x0.norm()) << "w " << w;
+    if (settled) {
+      EXPECT_LT((x - x0).norm(), 1e-6 * x0.norm()) << "w " << w;
+    }
   }
 }
 
