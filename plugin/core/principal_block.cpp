@@ -25,9 +25,8 @@ PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::
     Matrix block(m, m);
     for (Index b = 0; b < m; ++b)
       for (Index a = 0; a < m; ++a) block(a, b) = A.A_(F[a], F[b]);
-    dense_.compute(block);
-    has_dense_ = true;
-    positive_definite_ = dense_.info() == Eigen::Success;
+    dense_.emplace(block);
+    positive_definite_ = dense_->info() == Eigen::Success;
     return;
   }
   // A[F, F] from the columns of F, rows renumbered (position in F, -1 outside).
@@ -51,8 +50,8 @@ PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::
 
 void PrincipalBlockFactor::solve_in_place(Eigen::Ref<Vector> x) const {
   if (x.size() == 0) return;
-  if (has_dense_) {
-    dense_.solveInPlace(x);
+  if (dense_) {
+    dense_->solveInPlace(x);
     return;
   }
   work_ = P_ * x;
@@ -63,7 +62,7 @@ void PrincipalBlockFactor::solve_in_place(Eigen::Ref<Vector> x) const {
 
 std::size_t PrincipalBlockFactor::bytes() const {
   const auto doubles =
-      static_cast<std::size_t>((has_dense_ ? dense_.matrixLLT().size() : 0) + work_.size());
+      static_cast<std::size_t>((dense_ ? dense_->matrixLLT().size() : 0) + work_.size());
   const auto sparse = static_cast<std::size_t>(L_.nonZeros()) * (sizeof(double) + sizeof(int)) +
                       static_cast<std::size_t>(L_.outerSize() + 1) * sizeof(int) +
                       static_cast<std::size_t>(P_.size() + P_inverse_.size()) * sizeof(int);

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Cholesky>
+#include <optional>
 #include <vector>
 
 #include "types.hpp"
@@ -57,10 +58,10 @@ class PrincipalBlockFactor {
 
  private:
   bool positive_definite_ = true;
-  // Whether dense_ holds A[F, F] (else L_ does, or F is empty): Eigen's LLT
-  // asserts if a factor never computed is asked anything, its size included.
-  bool has_dense_ = false;
-  Eigen::LLT<Matrix> dense_;  // of a dense A
+  // A[F, F] of a dense A (else L_ holds it, or F is empty). Optional: an LLT
+  // never computed leaves its status uninitialized, which moving the factor
+  // into the cache would read (UBSan), and asserts if asked anything.
+  std::optional<Eigen::LLT<Matrix>> dense_;
   // Of a sparse A: P A[F, F] P^T = L L^T.
   SparseMatrix L_;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P_, P_inverse_;
