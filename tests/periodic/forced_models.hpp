@@ -8,7 +8,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "exact_flow.hpp"
 #include "reduced_field.hpp"
@@ -138,6 +141,21 @@ inline Matrix monodromy_by_differences(const nbm::ExactFlow& flow, const Vector&
     fd.col(j) << (p.u - m.u) / (2 * eps), (p.v - m.v) / (2 * eps);
   }
   return fd;
+}
+
+/// The monodromy of the impact oscillators' flow (one interior dof) from
+/// (u, v) = (-2.5, 0.7) at t0 = 0.4 over 13 time units, through at least four
+/// switches, against monodromy_by_differences.
+inline void expect_monodromy_matches_differences(const nbm::ExactFlow& flow,
+                                                 const std::string& what) {
+  const Vector u0 = Vector::Constant(1, -2.5), v0 = Vector::Constant(1, 0.7);
+  const double T = 13, t0 = 0.4;
+  const auto r = flow.integrate(u0, v0, T, true, {}, t0);
+  ASSERT_GE(r.switches.size(), 4u) << what;
+  const Matrix fd = monodromy_by_differences(flow, u0, v0, T, t0);
+  EXPECT_LT((r.monodromy - fd).norm(), 1e-7 * fd.norm()) << what << "\n"
+                                                          << r.monodromy << "\n"
+                                                          << fd;
 }
 
 /// The internal load vector (size n + 1, zero on the contact dof) of

@@ -132,15 +132,9 @@ void expect_forced_monodromy_matches_differences(double mB, double a_M, double b
   load.omega = 0.9;
   load.cos = {Eigen::Vector2d(1.2, 0)};
   load.sin = {Eigen::Vector2d(0.4, 0)};
-  const nbm::ExactFlow flow(field, damping, load);
-  const Vector u0 = Vector::Constant(1, -2.5), v0 = Vector::Constant(1, 0.7);
-  const double T = 13, t0 = 0.4;
-  const auto r = flow.integrate(u0, v0, T, true, {}, t0);
-  ASSERT_GE(r.switches.size(), 4u);
-  const Matrix fd = nbm_test::monodromy_by_differences(flow, u0, v0, T, t0);
-  EXPECT_LT((r.monodromy - fd).norm(), 1e-7 * fd.norm()) << "mB " << mB << " b_K " << b_K << "\n"
-                                                          << r.monodromy << "\n"
-                                                          << fd;
+  nbm_test::expect_monodromy_matches_differences(
+      nbm::ExactFlow(field, damping, load),
+      "mB " + std::to_string(mB) + " b_K " + std::to_string(b_K));
 }
 
 TEST(ForcedFlow, MonodromyThroughSwitchesMatchesFiniteDifferences) {
