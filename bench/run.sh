@@ -25,6 +25,10 @@
 # blocks, the sweep in n_c, the penalty break-even; about 1 hour more with its
 # default cases) writes its section of the report; SCALE=0 skips it,
 # SCALE_CASES="..." replaces its cases, SCALE_MILLION=1 adds the 1e6-dof block.
+# REPORT_ONLY=1: no benchmark run; the report (and the scale section) written
+# again from the raw data of the last run and its facts (raw.csv.info: date,
+# commit, load, BLAS, rounds), e.g. after bench/why.md or bench/why-scale.md
+# changed.
 # The report says which BLAS ran (scripts/install-deps.sh selects OpenBLAS)
 # and with how many threads: OPENBLAS_NUM_THREADS from the environment if set,
 # else OpenBLAS's default (one per core); the benchmarks run one at a time, so
@@ -34,8 +38,11 @@ repo=$(cd "$(dirname "$0")/.." && pwd)
 sizes=${1:-"1000 10000 100000"}
 orders=${2:-"1 2"}
 report=${3:-"$repo/bench/RESULTS.md"}
-bash "$repo/scripts/install-deps.sh" >/dev/null
-bash "$repo/scripts/build.sh" >/dev/null
+report_only=${REPORT_ONLY:-0}
+if [ "$report_only" != 1 ]; then
+  bash "$repo/scripts/install-deps.sh" >/dev/null
+  bash "$repo/scripts/build.sh" >/dev/null
+fi
 bench="$repo/build/bench/nbm_bench"
 work="$repo/out/bench"
 mkdir -p "$work" "$(dirname "$report")"
@@ -46,10 +53,21 @@ else
   raw="${report%.md}.csv"
   plot="${report%.md}.png"
 fi
-rounds=${ROUNDS:-3}
-echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw.rounds"
-load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
-blas=$("$bench" --blas)
+info="$raw.info"  # the facts of the run, which the report states
+if [ "$report_only" = 1 ]; then
+  . "$info"
+  sizes=""  # no run
+else
+  run_rounds=${ROUNDS:-3}
+  run_load=$(cut -d' ' -f1 /proc/loadavg)  # other work on the machine skews the ratios
+  run_blas=$("$bench" --blas)
+  run_date=$(date -u +%Y-%m-%d)
+  run_commit=$(git -C "$repo" rev-parse --short HEAD)
+  run_args="${1:+ \"$1\"}${2:+ \"$2\"}${3:+ $3}"
+  for v in run_rounds run_load run_blas run_date run_commit run_args; do printf '%s=%q\n' "$v" "${!v}"; done > "$info"
+  echo "name,order,dofs,contacts,time_us,held_mb,solves_per_step,switch_steps,peak_rss_mb" > "$raw.rounds"
+fi
+rounds=$run_rounds
 
 names=(PlainNewmarkStep PlainExplicitStep PlainFactorization NbmNewmarkStepFreeFlight
        NbmNewmarkStepBouncing NbmMasslessStepFreeFlight NbmMasslessStepBouncing
@@ -93,11 +111,11 @@ awk -F, -v OFS=, 'NR == 1 { print $0, "spread"; next }
 {
   echo "# Benchmark results"
   echo
-  echo "Produced by \`bash bench/run.sh${1:+ \"$1\"}${2:+ \"$2\"}${3:+ $3}\` on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD)"
+  echo "Produced by \`bash bench/run.sh$run_args\` on $run_date, commit $run_commit"
   echo "($(nproc) cores, $(awk '/MemTotal/ { printf "%.0f GiB", $2 / 1048576 }' /proc/meminfo),"
   echo "$(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'))."
-  echo "BLAS (CHOLMOD's): $blas."
-  echo "Load average when the run started: $load (on $(nproc) cores, anything above about 0.5 means the ratios"
+  echo "BLAS (CHOLMOD's): $run_blas."
+  echo "Load average when the run started: $run_load (on $(nproc) cores, anything above about 0.5 means the ratios"
   echo "below are perturbed by other work; rerun on a quiet machine)."
   echo "Plane-strain plate (bench/plate.cpp, width 2 x height 1, Lagrange P1/P2 triangles), contact on the bottom edge;"
   echo "implicit dt = 2e-4, bouncing runs restart every 250 steps (fall, impact, rebound); explicit"

@@ -16,8 +16,14 @@
 #     nodes), which may not finish with today's core: every benchmark process
 #     is stopped after TIMEOUT seconds (default 900) and reported as such.
 #   ROUNDS (default 1): rounds per benchmark, the fastest kept.
+#   SCALE_NBM="ScaleNbmNewmarkStepSweep ...": the NBM benchmarks run (default:
+#     all eight); without ScaleNbmSetup the setup is the one the implicit sweep
+#     timed before its steps (its setup_us), e.g. for the 1e6-dof block, where a
+#     process per benchmark costs a setup of many minutes each.
 #   REPORT_ONLY=1: no run, the section written again from SECTION's raw data
-#     (e.g. after a run stopped by hand).
+#     and the facts of the run that made it (SECTION's .csv.info: date, commit,
+#     rounds, duration, load, BLAS, clock), e.g. after the text around the
+#     tables changed, or a run stopped by hand.
 #   CLOCK=cpu: the ratios from the CPU time of the benchmark's thread instead
 #     of the wall-clock time (default real): on a machine loaded by other work,
 #     with OPENBLAS_NUM_THREADS=1 (the only thread then does all the work).
@@ -35,13 +41,22 @@ raw="${section%.md}.csv"
 rounds=${ROUNDS:-1}
 timeout=${TIMEOUT:-900}
 plain=(ScalePlainNewmarkStep ScalePlainExplicitStep ScalePlainFactorization)
-nbm=(ScaleNbmSetup ScaleNbmNewmarkStepFreeFlight ScaleNbmNewmarkStepSweep ScaleNbmMasslessStepFreeFlight
-     ScaleNbmMasslessStepSweep ScaleNbmExplicitStepFreeFlight ScaleNbmExplicitStepSweep ScalePenaltyStepSweep)
+nbm=(${SCALE_NBM:-ScaleNbmSetup ScaleNbmNewmarkStepFreeFlight ScaleNbmNewmarkStepSweep ScaleNbmMasslessStepFreeFlight
+     ScaleNbmMasslessStepSweep ScaleNbmExplicitStepFreeFlight ScaleNbmExplicitStepSweep ScalePenaltyStepSweep})
 clock=${CLOCK:-real}
-header="name,body,order,dofs_arg,pct,dofs,contacts,time_us,held_mb,switch_steps,fallbacks,penalty_factor_us,peak_rss_mb,real_us,cpu_us"
-[ "${REPORT_ONLY:-0}" = 1 ] || echo "$header" > "$raw.rounds"
-blas=$("$bench" --blas)
-load=$(cut -d' ' -f1 /proc/loadavg)
+header="name,body,order,dofs_arg,pct,dofs,contacts,time_us,held_mb,switch_steps,fallbacks,penalty_factor_us,peak_rss_mb,real_us,cpu_us,setup_us"
+info="$raw.info"  # the facts of the run, which the report states
+if [ "${REPORT_ONLY:-0}" = 1 ]; then
+  . "$info"
+else
+  echo "$header" > "$raw.rounds"
+  run_blas=$("$bench" --blas)
+  run_load=$(cut -d' ' -f1 /proc/loadavg)
+  run_date=$(date -u +%Y-%m-%d)
+  run_commit=$(git -C "$repo" rev-parse --short HEAD)
+  run_args="${1:+ \"$1\"}$([ "${SCALE_MILLION:-0}" = 1 ] && echo " with SCALE_MILLION=1")"
+  run_clock=$clock
+fi
 start=$SECONDS
 
 # run NAME BODY ORDER DOFS PCT: one benchmark in its own process, one CSV row
@@ -52,7 +67,7 @@ run() {
   if ! timeout "$timeout" "$bench" --benchmark_filter="$filter" --benchmark_format=csv \
          --benchmark_min_time=0.5 > "$out" 2> "$out.err" || ! grep -q '^"BM_' "$out" ||
        grep -q '^"BM_.*,true,' "$out"; then  # no result, or error_occurred (SkipWithError)
-    echo "$name,$body,$order,$dofs,$pct,,,NA,,,,,,," >> "$raw.rounds"
+    echo "$name,$body,$order,$dofs,$pct,,,NA,,,,,,,," >> "$raw.rounds"
     echo "scale: $name $body:$order:$dofs:$pct failed, was skipped or took more than $timeout s" >&2
     return
   fi
@@ -63,9 +78,9 @@ run() {
     /^"BM_/ {
       u = $col["time_unit"]; f = (u == "ms") ? 1000 : (u == "ns") ? 1e-3 : (u == "s") ? 1e6 : 1
       real = $col["real_time"] * f; cpu = $col["cpu_time"] * f
-      printf "%s,%s,%s,%s,%s,%d,%d,%.6g,%.3f,%s,%s,%s,%.0f,%.6g,%.6g\n", n, b, o, d, p, $col["dofs"],
+      printf "%s,%s,%s,%s,%s,%d,%d,%.6g,%.3f,%s,%s,%s,%.0f,%.6g,%.6g,%s\n", n, b, o, d, p, $col["dofs"],
              $col["contacts"], clock == "cpu" ? cpu : real, $col["held_MB"], get("switch_steps"),
-             get("fallbacks"), get("penalty_factor_us"), $col["peak_rss_MB"], real, cpu
+             get("fallbacks"), get("penalty_factor_us"), $col["peak_rss_MB"], real, cpu, get("setup_us")
     }
     function get(c) { return (c in col) ? $col[c] : "" }' "$out" >> "$raw.rounds"
 }
@@ -88,13 +103,23 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
     if (!(k in best)) { order[++n] = k; best[k] = $0; t[k] = $8; next }
     if ($8 != "NA" && (t[k] == "NA" || $8 + 0 < t[k] + 0)) { best[k] = $0; t[k] = $8 } }
   END { for (i = 1; i <= n; i++) print best[order[i]] }' "$raw.rounds" > "$raw"
+if [ "${REPORT_ONLY:-0}" != 1 ]; then
+  run_rounds=$rounds
+  run_seconds=$((SECONDS - start))
+  for v in run_blas run_load run_date run_commit run_args run_clock run_rounds run_seconds; do
+    printf '%s=%q\n' "$v" "${!v}"
+  done > "$info"
+fi
 
+# The tables' awk programs read the raw rows with t[name, case, pct] = time;
+# without a ScaleNbmSetup row (SCALE_NBM), the setup is the implicit sweep's.
+rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $16 != "" && (t["ScaleNbmSetup", k, $5] == "" || t["ScaleNbmSetup", k, $5] == "NA")) t["ScaleNbmSetup", k, $5] = $16 }'
 {
   echo "## Large contact sets and 3D (issue 14)"
   echo
-  echo "Produced by \`bash bench/scale.sh${1:+ \"$1\"}\`$([ "${SCALE_MILLION:-0}" = 1 ] && echo " with SCALE_MILLION=1") on $(date -u +%Y-%m-%d), commit $(git -C "$repo" rev-parse --short HEAD),"
-  echo "$rounds round(s), $((SECONDS - start)) s; load average when it started: $load on $(nproc) cores (above about 0.5: ratios perturbed by other work)."
-  echo "BLAS: $blas. Times: $([ "$clock" = cpu ] && echo "CPU time of the benchmark thread (CLOCK=cpu)" || echo "wall clock")."
+  echo "Produced by \`bash bench/scale.sh$run_args\` on $run_date, commit $run_commit,"
+  echo "$run_rounds round(s), $run_seconds s; load average when it started: $run_load on $(nproc) cores (above about 0.5: ratios perturbed by other work)."
+  echo "BLAS: $run_blas. Times: $([ "$run_clock" = cpu ] && echo "CPU time of the benchmark thread (CLOCK=cpu)" || echo "wall clock")."
   echo "Bodies: the plate (bench/plate.cpp, W/H = 2), the strip (the same, W/H = 80), the block"
   echo "(bench/block.cpp: tetrahedra, nx = ny = 4 nz cells, bottom face 1 x 1). Contact: pct % of the"
   echo "bottom face (along x), or 200: bottom and top faces (the top nodes never touch). Sweep: the"
@@ -111,9 +136,9 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
   echo
   echo "| body | order | dofs | n_c | setup / factorization | memory after the sweep / plain | free flight / plain | changing step / plain | massless free flight / plain | massless changing / plain | explicit free flight / plain | explicit changing / plain | penalty changing / plain | NBM / penalty step | break-even (steps) | steps with a change | fallbacks | memory held (MB) |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
-  awk -F, '
+  awk -F, "$rows_awk"'
     function r(a, b) { return (a == "" || a == "NA" || b == "" || b == "NA" || b + 0 == 0) ? "-" : sprintf("%.2f", a / b) }
-    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; m[$1, k, $5] = $9; sw[$1, k, $5] = $10; fb[$1, k, $5] = $11
+    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; setup_of_sweep(); m[$1, k, $5] = $9; sw[$1, k, $5] = $10; fb[$1, k, $5] = $11
              pf[$1, k, $5] = $12; if ($1 ~ /^ScaleNbm|^ScalePenalty/) { if ($7 != "") nc[k, $5] = $7; if (!((k, $5) in seen)) { seen[k, $5] = 1; rows[++n] = k FS $5 } }
              if ($1 ~ /^ScalePlain/) { plain[$1, k] = $8; pm[$1, k] = $9; if ($6 != "") dofs[k] = $6 } }
     END {
@@ -146,8 +171,8 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
   echo "plain step, free flight <= 1.2x, setup <= 3x a factorization, memory <= 2x; the 3D block of"
   echo "about 1e6 dofs: changing step <= 5x, setup <= 5x, memory <= 2x."
   echo
-  awk -F, '
-    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; m[$1, k, $5] = $9
+  awk -F, "$rows_awk"'
+    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; setup_of_sweep(); m[$1, k, $5] = $9
              if ($1 ~ /^ScaleNbm/ && $7 != "") { nc[k, $5] = $7; if (!((k, $5) in seen)) { seen[k, $5] = 1; rows[++n] = k FS $5 } }
              if ($1 ~ /^ScalePlain/) { plain[$1, k] = $8; pm[$1, k] = $9; if ($6 != "") dofs[k] = $6 } }
     function row(what, a, b, target) {
@@ -179,8 +204,8 @@ awk -F, -v OFS=, 'NR == 1 { print; next }
   echo
   echo "| body | order | dofs | n_c range | setup - factorization | changing step - plain | massless changing - plain | free flight - plain | memory held |"
   echo "|---|---|---|---|---|---|---|---|---|"
-  awk -F, '
-    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; m[$1, k, $5] = $9
+  awk -F, "$rows_awk"'
+    NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; setup_of_sweep(); m[$1, k, $5] = $9
              if ($1 ~ /^ScaleNbm/ && $7 != "") { nc[k, $5] = $7; if (!((k, $5) in seen)) { seen[k, $5] = 1; pcts[k] = pcts[k] " " $5 } }
              if ($1 ~ /^ScalePlain/) { plain[$1, k] = $8; if ($6 != "") dofs[k] = $6; keys[k] = 1 } }
     # slope of log(value - base) against log(n_c) over the contact sets of k
