@@ -6,7 +6,8 @@ packages=(
   build-essential cmake pkg-config
   freefem++ libfreefem++-dev gmsh gnuplot-nox
   libeigen3-dev libsuitesparse-dev
-  libopenblas0-pthread          # optimised BLAS/LAPACK for CHOLMOD (issue 14), see below
+  libopenblas0-pthread          # optimised BLAS/LAPACK for CHOLMOD and the core's
+  libblas-dev                   # dense kernels (issue 14), see below; -lblas to link
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev   # libFuzzer (tests/fuzz/run.sh); gcc's ASan/UBSan
                                 # runtimes (tests/sanitize.sh) come with build-essential

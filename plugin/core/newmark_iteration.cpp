@@ -18,11 +18,14 @@ NewmarkIteration::NewmarkIteration(const ContactProblem& problem, double dt, dou
                                    double gamma, const SparseMatrix& C)
     : problem_(problem), dt_(dt), beta_(beta), gamma_(gamma) {
   check_newmark_parameters(beta, gamma);
+  // Ordered for the constrained solves with B = [K_{:,C} E_C] (both mass
+  // treatments solve with columns of B).
+  const SparseMatrix& B = problem.constraint_basis();
   if (C.size() == 0) {
-    S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K");
+    S_ = make_cholesky_inverse(problem.M() + (beta * dt * dt) * problem.K(), "M + beta dt^2 K", B);
   } else {
     S_ = make_cholesky_inverse(problem.M() + (gamma * dt) * C + (beta * dt * dt) * problem.K(),
-                               "M + gamma dt C + beta dt^2 K");
+                               "M + gamma dt C + beta dt^2 K", B);
   }
 }
 

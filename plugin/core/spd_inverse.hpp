@@ -44,6 +44,13 @@ Matrix inner_products(const SparseMatrix& Y);
 /// one inverse serves one thread at a time.
 std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
                                                        const std::string& what);
+/// The same, for solves constrained by the columns of `constraints` (B of
+/// ConstrainedSolver, method.md §4): the fill-reducing ordering is the one of
+/// CHOLMOD's choice and nested dissection whose constrained step costs less,
+/// the two substitutions with L plus the products with Y = L^-1 P B (bench/why.md).
+std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
+                                                       const std::string& what,
+                                                       const SparseMatrix& constraints);
 
 /// Inverse of a positive diagonal matrix (a lumped mass). Throws InputError
 /// naming `what` if an entry is not positive.
