@@ -54,7 +54,8 @@ else
   run_load=$(cut -d' ' -f1 /proc/loadavg)
   run_date=$(date -u +%Y-%m-%d)
   run_commit=$(git -C "$repo" rev-parse --short HEAD)
-  run_args="${1:+ \"$1\"}$([ "${SCALE_MILLION:-0}" = 1 ] && echo " with SCALE_MILLION=1")"
+  run_args="${1:+ \"$1\"}"
+  [ "${SCALE_MILLION:-0}" = 1 ] && run_args="$run_args with SCALE_MILLION=1"
   run_clock=$clock
 fi
 start=$SECONDS

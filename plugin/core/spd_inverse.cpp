@@ -81,7 +81,10 @@ double forward_entries(const cholmod_factor& L, const SparseMatrix& B) {
 // path, so that a contact column of Y reaches nearly every later row (the
 // setup, the memory and every step then grow with n_c n); nested dissection
 // (METIS) keeps the paths to the separators above the node. Both are tried
-// when CHOLMOD's choice is not already a nested dissection.
+// when CHOLMOD's choice is not already a nested dissection, and nested
+// dissection is taken only if it at least halves the cost: another ordering
+// moves every trajectory at round-off level, which near-equal costs do not
+// pay for (small bodies keep the factor, and the results, of the plain solves).
 cholmod_factor* analyze_for(cholmod_sparse& A, const SparseMatrix& B, cholmod_common& common) {
   cholmod_factor* best = cholmod_analyze(&A, &common);
   if (best == nullptr || B.cols() == 0 || best->ordering == CHOLMOD_METIS ||
@@ -96,7 +99,7 @@ cholmod_factor* analyze_for(cholmod_sparse& A, const SparseMatrix& B, cholmod_co
   cholmod_factor* dissection = cholmod_analyze(&A, &common);
   common.nmethods = methods;
   common.method[0].ordering = ordering;
-  if (dissection != nullptr && cost(*dissection) < cost(*best)) std::swap(best, dissection);
+  if (dissection != nullptr && 2 * cost(*dissection) < cost(*best)) std::swap(best, dissection);
   cholmod_free_factor(&dissection, &common);
   return best;
 }
