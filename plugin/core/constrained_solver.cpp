@@ -48,8 +48,7 @@ ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X,
       cholesky_(static_cast<const CholeskyInverse*>(X_.get())),
       B_(B),
       n_c_(B.cols() / 2),
-      Y_(cholesky_->forward(B)),
-      W_(inner_products(Y_)),
+      Y_(cholesky_->forward(B, &W_)),
       zero_(Vector::Zero(n_c_)),
       mu_(n_c_) {}
 
@@ -120,10 +119,11 @@ void solve_constrained_once(const CholeskyInverse& X, const SparseMatrix& B,
   for (Index k = 0; k < n_c; ++k) picks.emplace_back(active[k] ? n_c + k : k, k, 1.0);
   SparseMatrix select(B.cols(), n_c);
   select.setFromTriplets(picks.begin(), picks.end());
-  const SparseMatrix Y_G = X.forward(SparseMatrix(B * select));
+  Matrix W;
+  const SparseMatrix Y_G = X.forward(SparseMatrix(B * select), &W);
   std::vector<Index> all(n_c);
   for (Index k = 0; k < n_c; ++k) all[k] = k;
-  const SchurFactor S(inner_products(Y_G), std::move(all));
+  const SchurFactor S(W, std::move(all));
   Vector mu(n_c);
   solve_through_halves(X, Y_G, [](Index k) { return k; }, S, r, h, mu, x);
 }

@@ -58,8 +58,8 @@ class ConstrainedSolver {
   const CholeskyInverse* cholesky_ = nullptr;  // X_, when it is one
   const SparseMatrix& B_;
   Index n_c_;
+  Matrix W_;        // B^T X^-1 B (before Y_: the forward substitutions form both)
   SparseMatrix Y_;  // L^{-1} P B, with cholesky_
-  Matrix W_;
   // Memory: the cache's byte budget plus the base (bordered factors hold
   // 2 n_c r doubles each, a fresh one n_c^2).
   mutable ActiveSetCache<std::shared_ptr<const SchurFactor>> schur_;

@@ -38,9 +38,11 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
     : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
-      Y_(iteration_.contact_columns()),
-      lcp_(std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * inner_products(Y_))),
-      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {}
+      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {
+  Matrix compliance;  // W_CC
+  Y_ = iteration_.contact_columns(&compliance);
+  lcp_ = std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * compliance);
+}
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives

@@ -14,7 +14,7 @@ MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
       restitution_(restitution),
       iteration_(problem, dt, 0.25, 0.5, C_),
       S_(*iteration_.S()),
-      W_CC_(inner_products(iteration_.contact_columns())),
+      W_CC_(iteration_.contact_compliance()),
       impulse_(Vector::Zero(problem.n_contact())) {
   if (!(restitution >= 0 && restitution <= 1))
     throw InputError("restitution: " + std::to_string(restitution) +

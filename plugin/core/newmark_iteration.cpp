@@ -29,9 +29,9 @@ NewmarkIteration::NewmarkIteration(const ContactProblem& problem, double dt, dou
   }
 }
 
-SparseMatrix NewmarkIteration::contact_columns() const {
+SparseMatrix NewmarkIteration::contact_columns(Matrix* compliance) const {
   // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
-  return S_->forward(problem_.constraint_basis().rightCols(problem_.n_contact()));
+  return S_->forward(problem_.constraint_basis().rightCols(problem_.n_contact()), compliance);
 }
 
 }  // namespace nbm

@@ -44,10 +44,16 @@ class NewmarkIteration {
 
   /// S = P' L L' P, shared with what is built on it.
   const std::shared_ptr<const CholeskyInverse>& S() const { return S_; }
-  /// Y_E = L^-1 P E_C (sparse), so that the contact compliance
-  /// E_C' S^-1 E_C = Y_E' Y_E: the columns of the unit rows of the contact
-  /// dofs, one forward substitution each.
-  SparseMatrix contact_columns() const;
+  /// Y_E = L^-1 P E_C (sparse) and the contact compliance
+  /// *compliance = E_C' S^-1 E_C = Y_E' Y_E: the columns of the unit rows of
+  /// the contact dofs (supernodal_forward.hpp).
+  SparseMatrix contact_columns(Matrix* compliance) const;
+  /// E_C' S^-1 E_C alone.
+  Matrix contact_compliance() const {
+    Matrix W;
+    contact_columns(&W);
+    return W;
+  }
 
  private:
   const ContactProblem& problem_;

@@ -7,12 +7,10 @@
 #include <vector>
 
 #include "errors.hpp"
+#include "supernodal_forward.hpp"
 
 namespace nbm {
 namespace {
-
-// Largest dense block of rows of Y gathered by inner_products (16 MiB).
-constexpr Index kGramBlockEntries = Index(1) << 21;
 
 // A CHOLMOD view (no copy) of column-major doubles.
 cholmod_dense dense_view(double* data, Index rows, Index cols) {
@@ -161,69 +159,19 @@ class CholmodInverse final : public CholeskyInverse {
     x.swap(permuted_);
   }
 
-  /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4): forward
-  /// substitutions only, each touching just the part of L that its sparse
-  /// column of B reaches (the elimination-tree path of its nonzeros), so the
-  /// cost grows with the number of columns times that path, not times n.
-  Matrix gram(const SparseMatrix& B) const override { return inner_products(forward(B)); }
+  using CholeskyInverse::forward;
+  /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4).
+  Matrix gram(const SparseMatrix& B) const override {
+    Matrix W;
+    forward(B, &W);
+    return W;
+  }
 
-  // Sparse right-hand sides (cholmod_solve2's Bset) need a simplicial
-  // factor: a copy of L is converted, L itself stays supernodal for the fast
-  // dense solves of the time steps.
-  SparseMatrix forward(const SparseMatrix& B) const override {
-    cholmod_factor* Ls = cholmod_copy_factor(L_, &common_);
-    if (Ls == nullptr ||
-        !cholmod_change_factor(CHOLMOD_REAL, true, false, false, false, Ls, &common_)) {
-      cholmod_free_factor(&Ls, &common_);
-      throw NumericalError("CHOLMOD: no memory for a simplicial copy of the factor");
-    }
-    // (P b)_k = b_perm[k]: entry i of b lands in row inverse[i].
-    const int* perm = static_cast<const int*>(L_->Perm);
-    std::vector<int> inverse(n_);
-    for (Index k = 0; k < n_; ++k) inverse[perm[k]] = static_cast<int>(k);
-
-    Vector b = Vector::Zero(n_);
-    std::vector<int> set_p{0, 0}, set_i(n_);
-    cholmod_sparse set{};
-    set.nrow = static_cast<std::size_t>(n_);
-    set.ncol = 1;
-    set.nzmax = static_cast<std::size_t>(n_);
-    set.p = set_p.data();
-    set.i = set_i.data();
-    set.itype = CHOLMOD_INT;
-    set.xtype = CHOLMOD_PATTERN;
-    set.dtype = CHOLMOD_DOUBLE;
-    set.packed = 1;
-    cholmod_dense bv = dense_view(b.data(), n_, 1);
-    cholmod_dense *x = nullptr, *y = nullptr, *e = nullptr;
-    cholmod_sparse* reach = nullptr;
-    std::vector<Triplet> entries;
-    bool ok = true;
-    for (Index j = 0; j < B.cols() && ok; ++j) {
-      int count = 0;
-      for (SparseMatrix::InnerIterator it(B, j); it; ++it) {
-        b(inverse[it.row()]) = it.value();
-        set_i[count++] = inverse[it.row()];
-      }
-      set_p[1] = count;
-      ok = cholmod_solve2(CHOLMOD_L, Ls, &bv, &set, &x, &reach, &y, &e, &common_);
-      if (ok) {
-        const int* rows = static_cast<const int*>(reach->i);
-        const double* value = static_cast<const double*>(x->x);
-        for (int p = 0; p < static_cast<const int*>(reach->p)[1]; ++p)
-          entries.emplace_back(rows[p], static_cast<int>(j), value[rows[p]]);
-      }
-      for (int p = 0; p < count; ++p) b(set_i[p]) = 0.0;
-    }
-    cholmod_free_dense(&x, &common_);
-    cholmod_free_dense(&y, &common_);
-    cholmod_free_dense(&e, &common_);
-    cholmod_free_sparse(&reach, &common_);
-    cholmod_free_factor(&Ls, &common_);
-    if (!ok) throw NumericalError("CHOLMOD: sparse forward substitution failed (out of memory?)");
-    SparseMatrix Y(n_, B.cols());
-    Y.setFromTriplets(entries.begin(), entries.end());
-    return Y;
+  SparseMatrix forward(const SparseMatrix& B, Matrix* gram) const override {
+    if (B.rows() != n_)
+      throw InputError("forward: a matrix with " + std::to_string(B.rows()) + " rows, expected " +
+                       std::to_string(n_));
+    return supernodal_forward(*L_, B, gram);
   }
 
   // x <- X^{-1} x for `cols` columns in place (several right-hand sides at once).
@@ -285,79 +233,6 @@ class DiagonalInverse final : public SpdInverse {
 };
 
 }  // namespace
-
-// W = Y^T Y = sum over the rows y_i of Y of y_i^T y_i. The rows of Y = L^-1 P B
-// come in elimination order: a column reaches the rows of its elimination-tree
-// path, so consecutive rows (a supernode, then the separators above it) share
-// most of their columns, and the top separators' rows are reached by nearly
-// every column. Runs of consecutive rows are gathered, with the columns they
-// touch, into a dense block D, and W gets D^T D from a symmetric rank-k update
-// (a BLAS-3 kernel) instead of a sparse x sparse product, whose sparse result
-// is in the end dense (issue 14: 38-92% of the setup). A run ends when D would
-// be less than half full (so at most about twice the flops of the sparse
-// product) or exceed kGramBlockEntries. Only the lower triangle is computed,
-// then mirrored: W is symmetric to the last bit.
-Matrix inner_products(const SparseMatrix& Y) {
-  const Index m = Y.cols();
-  Matrix W = Matrix::Zero(m, m);
-  const Eigen::SparseMatrix<double, Eigen::RowMajor, int> rows = Y;
-  std::vector<int> local(m, -1);  // column of Y -> column of D, -1 if not in the run
-  std::vector<int> columns;       // columns of the run, in the order met
-  Matrix D, Wb;
-  auto flush = [&](Index first, Index last) {
-    if (columns.empty()) return;
-    // Columns in increasing order: the lower triangle of D^T D maps to W's.
-    std::sort(columns.begin(), columns.end());
-    const Index k = static_cast<Index>(columns.size());
-    // A run touching most columns updates W in place over all of them: no
-    // k x k temporary of the size of W, at most 4x the flops of the compact one.
-    const bool full = 2 * k >= m;
-    if (full) {
-      columns.resize(m);
-      for (Index j = 0; j < m; ++j) columns[j] = static_cast<int>(j);
-    }
-    const Index width = full ? m : k;
-    for (Index c = 0; c < width; ++c) local[columns[c]] = static_cast<int>(c);
-    D.setZero(last - first, width);
-    for (Index i = first; i < last; ++i)
-      for (decltype(rows)::InnerIterator it(rows, i); it; ++it)
-        D(i - first, local[it.col()]) = it.value();
-    if (full) {
-      W.selfadjointView<Eigen::Lower>().rankUpdate(D.transpose());
-    } else {
-      Wb.setZero(k, k);
-      Wb.selfadjointView<Eigen::Lower>().rankUpdate(D.transpose());
-      for (Index b = 0; b < k; ++b)
-        for (Index a = b; a < k; ++a) W(columns[a], columns[b]) += Wb(a, b);
-    }
-    for (int c : columns) local[c] = -1;
-    columns.clear();
-  };
-  Index first = 0;   // first row of the run
-  Index filled = 0;  // nonzeros of the run
-  for (Index i = 0; i < rows.rows(); ++i) {
-    const Index nonzeros = rows.outerIndexPtr()[i + 1] - rows.outerIndexPtr()[i];
-    if (nonzeros == 0) continue;
-    Index added = 0;
-    for (decltype(rows)::InnerIterator it(rows, i); it; ++it) added += local[it.col()] < 0;
-    const Index height = i + 1 - first, width = static_cast<Index>(columns.size()) + added;
-    if (!columns.empty() &&
-        (2 * (filled + nonzeros) < height * width || height * width > kGramBlockEntries)) {
-      flush(first, i);
-      first = i;
-      filled = 0;
-    }
-    for (decltype(rows)::InnerIterator it(rows, i); it; ++it)
-      if (local[it.col()] < 0) {
-        local[it.col()] = static_cast<int>(columns.size());
-        columns.push_back(it.col());
-      }
-    filled += nonzeros;
-  }
-  flush(first, rows.rows());
-  W.triangularView<Eigen::StrictlyUpper>() = W.transpose();
-  return W;
-}
 
 std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
                                                        const std::string& what) {

@@ -4,6 +4,7 @@
 
 #include <memory>
 
+#include "gram.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -30,13 +31,12 @@ class CholeskyInverse : public SpdInverse {
   /// x <- P' L^{-T} x.
   virtual void backward_in_place(Vector& x) const = 0;
   /// Y = L^{-1} P B for a sparse B, sparse: a column of Y is nonzero only
-  /// where the nonzeros of its column of B reach in the elimination tree.
-  /// Then B^T X^{-1} B = Y^T Y (gram).
-  virtual SparseMatrix forward(const SparseMatrix& B) const = 0;
+  /// where the nonzeros of its column of B reach in the elimination tree
+  /// (supernodal_forward.hpp). With `gram`, also *gram = Y^T Y =
+  /// B^T X^{-1} B, formed as Y is.
+  virtual SparseMatrix forward(const SparseMatrix& B, Matrix* gram) const = 0;
+  SparseMatrix forward(const SparseMatrix& B) const { return forward(B, nullptr); }
 };
-
-/// Y^T Y, dense and symmetric to the last bit.
-Matrix inner_products(const SparseMatrix& Y);
 
 /// Sparse Cholesky (CHOLMOD, supernodal). Throws NumericalError naming `what`
 /// if the matrix is not positive definite. Solves reuse workspaces of the

@@ -9,6 +9,7 @@
 
 #include "active_set.hpp"
 #include "constrained_solver.hpp"
+#include "gram.hpp"
 #include "principal_block.hpp"
 #include "schur_factor.hpp"
 #include "spd_inverse.hpp"
@@ -72,6 +73,107 @@ TEST(DenseKernels, GramSpansSeveralBlocksAtLargeSizes) {
   const Mat W_ref = Yd.transpose() * Yd;
   const Mat W = nbm::inner_products(Y);
   EXPECT_LE((W - W_ref).cwiseAbs().maxCoeff(), 1e-12 * W_ref.cwiseAbs().maxCoeff());
+}
+
+TEST(DenseKernels, GramAccumulatorTakesLargeBlocksInChunks) {
+  // Dense blocks larger than one run (2^21 entries) are applied at once, in
+  // chunks of rows: over all of W's columns, over most of them (scattered
+  // into W's width), and over few of them (a separate product), each
+  // against the dense product; blocks and rows mix in one accumulator.
+  std::mt19937 rng(16);
+  const Index m = 3000;
+  std::vector<int> all(m), most, few;
+  for (int c = 0; c < m; ++c) {
+    all[c] = c;
+    if (c % 5 != 2) most.push_back(c);
+    if (c % 7 == 0) few.push_back(c);
+  }
+  nbm::GramAccumulator accumulator(m);
+  Mat W_ref = Mat::Zero(m, m);
+  auto add = [&](Index rows, const std::vector<int>& columns) {
+    const Mat D = Mat::Random(rows, static_cast<Index>(columns.size()));
+    accumulator.add(D, columns);
+    Mat wide = Mat::Zero(rows, m);
+    for (std::size_t c = 0; c < columns.size(); ++c) wide.col(columns[c]) = D.col(c);
+    W_ref += wide.transpose() * wide;
+  };
+  add(800, all);   // 2.4e6 entries
+  add(900, most);  // 2.2e6
+  add(5, few);     // small: into a run
+  add(4000, few);  // 1.7e6: a run of its own
+  add(3, most);
+  const Mat W = accumulator.finish();
+  EXPECT_LE((W - W_ref).cwiseAbs().maxCoeff(), 1e-12 * W_ref.cwiseAbs().maxCoeff());
+  EXPECT_EQ(W, W.transpose()) << "symmetric to the last bit";
+}
+
+// A 3D grid Laplacian with three components per node (the sparsity of a P1
+// elasticity matrix on nx x ny x nz nodes), shifted to be well conditioned.
+Sparse grid_3d(int nx, int ny, int nz) {
+  auto node = [&](int i, int j, int k) { return (k * ny + j) * nx + i; };
+  std::vector<Eigen::Triplet<double, int>> t;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i)
+        for (int c = 0; c < 3; ++c) {
+          const int a = 3 * node(i, j, k) + c;
+          t.emplace_back(a, a, 6.5 + c);
+          auto couple = [&](int i2, int j2, int k2) {
+            if (i2 >= nx || j2 >= ny || k2 >= nz) return;
+            const int b = 3 * node(i2, j2, k2) + c;
+            t.emplace_back(a, b, -1.0);
+            t.emplace_back(b, a, -1.0);
+          };
+          couple(i + 1, j, k);
+          couple(i, j + 1, k);
+          couple(i, j, k + 1);
+        }
+  Sparse A(3 * nx * ny * nz, 3 * nx * ny * nz);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+TEST(DenseKernels, SupernodalForwardMatchesDenseSubstitutions) {
+  // Y = L^-1 P B by the supernodal forward substitutions against one dense
+  // forward substitution per column, on a 3D grid (separators of hundreds of
+  // rows, reached by every column) with the constraint columns of a face
+  // (unit columns and the matrix's own columns of the face's dofs), a
+  // column with entries far apart (several supernodes start it), an empty
+  // column, and W = Y^T Y against the dense Gram matrix.
+  const Sparse A = grid_3d(14, 14, 5);
+  const Index n = A.rows();
+  std::vector<Index> face;
+  for (Index node = 0; node < 14 * 14; node += 2) face.push_back(3 * node + 2);
+  const Index m = 2 * static_cast<Index>(face.size()) + 2;
+  Mat Bd = Mat::Zero(n, m);
+  for (std::size_t k = 0; k < face.size(); ++k) {
+    Bd.col(k) = Mat(A.col(face[k]));
+    Bd(face[k], face.size() + k) = 1.0;
+  }
+  Bd(5, m - 2) = 1.5;
+  Bd(n - 7, m - 2) = -2.0;  // m - 1: empty
+  const Sparse B = Bd.sparseView();
+  const auto inverse = nbm::make_cholesky_inverse(A, "A");
+  Mat W;
+  const Sparse Y = inverse->forward(B, &W);
+  ASSERT_EQ(Y.rows(), n);
+  ASSERT_EQ(Y.cols(), m);
+  for (Index j = 0; j < m; ++j) {
+    Vec b = Bd.col(j);
+    inverse->forward_in_place(b);
+    const Vec y = Mat(Y.col(j));
+    EXPECT_LE((y - b).cwiseAbs().maxCoeff(), 1e-13 * std::max(1.0, b.cwiseAbs().maxCoeff()))
+        << "column " << j;
+  }
+  EXPECT_EQ(Y.col(m - 1).nonZeros(), 0);
+  for (Index j = 0; j < m; ++j)
+    for (Sparse::InnerIterator it(Y, j); it; ++it) ASSERT_NE(it.value(), 0.0) << "exact zeros left out";
+  Mat X_inv_B = Bd;
+  inverse->solve_in_place(X_inv_B);
+  const Mat W_ref = Bd.transpose() * X_inv_B;
+  EXPECT_LE((W - W_ref).cwiseAbs().maxCoeff(), 1e-12 * W_ref.cwiseAbs().maxCoeff());
+  EXPECT_EQ(W, W.transpose());
+  EXPECT_EQ(inverse->gram(B), W);
 }
 
 // x of X x = r + G^T mu, G x = h (dense KKT system), the rows of G being
