@@ -107,9 +107,16 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   contact_.resize(nc);
   for (Index k = 0; k < nc; ++k) contact_[k] = internal[contacts_.dof(k, 0)];
 
+  // K_CC from the contact columns of K, rows renumbered (-1: not a contact dof).
+  std::vector<Index> node_of(static_cast<std::size_t>(n), -1);
+  for (Index k = 0; k < nc; ++k) node_of[contact_[k]] = k;
+  std::vector<Triplet> coupling;
+  for (Index b = 0; b < nc; ++b)
+    for (SparseMatrix::InnerIterator it(K_, contact_[b]); it; ++it)
+      if (const Index a = node_of[it.row()]; a >= 0)
+        coupling.emplace_back(static_cast<int>(a), static_cast<int>(b), it.value());
   K_CC_.resize(nc, nc);
-  for (Index a = 0; a < nc; ++a)
-    for (Index b = 0; b < nc; ++b) K_CC_(a, b) = K_.coeff(contact_[a], contact_[b]);
+  K_CC_.setFromTriplets(coupling.begin(), coupling.end());
 
   std::vector<Triplet> t;
   for (Index k = 0; k < nc; ++k) {

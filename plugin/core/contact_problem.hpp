@@ -36,8 +36,9 @@ class ContactProblem {
   const Vector& gaps() const { return contacts_.gaps(); }
   /// Internal index of the contact dof (normal displacement) of each node.
   const std::vector<Index>& contact_index() const { return contact_; }
-  /// K_CC, dense: the LCP matrix of the nodal boundary relation (§3).
-  const Matrix& K_CC() const { return K_CC_; }
+  /// K_CC (sparse: a contact node couples to its neighbours on the contact
+  /// boundary): the LCP matrix of the nodal boundary relation (§3).
+  const SparseMatrix& K_CC() const { return K_CC_; }
   /// B = [K_{:,C}  E_C] (size x 2 n_contact): the rows of the constraint
   /// matrix G of §4 are columns of B (stiffness row for an open contact,
   /// unit row for a closed one).
@@ -81,7 +82,7 @@ class ContactProblem {
   Vector user_lumped_mass_;   // row sums of the user's M
   SparseMatrix M_, K_;
   std::vector<Index> contact_;
-  Matrix K_CC_;
+  SparseMatrix K_CC_;
   SparseMatrix B_;
   bool massless_boundary_ = false;
   bool exact_round_trip_ = true;

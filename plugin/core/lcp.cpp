@@ -6,6 +6,7 @@
 #include <numeric>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 #include "errors.hpp"
 
@@ -28,16 +29,23 @@ void free_indices(const std::vector<bool>& active, std::vector<Index>& F) {
     if (!active[i]) F.push_back(static_cast<Index>(i));
 }
 
-void check_matrix(const Matrix& A, Index n) {
+// A square, finite, symmetric matrix, dense or sparse.
+template <class AnyMatrix>
+const AnyMatrix& check_matrix(const AnyMatrix& A, Index n) {
   if (A.rows() != n || A.cols() != n)
     throw InputError("LCP: matrix is " + std::to_string(A.rows()) + "x" +
                      std::to_string(A.cols()) + ", expected " + std::to_string(n) + "x" +
                      std::to_string(n));
-  if (!A.allFinite()) throw InputError("LCP: non-finite data");
+  if constexpr (std::is_same_v<AnyMatrix, SparseMatrix>) {
+    if (!A.coeffs().allFinite()) throw InputError("LCP: non-finite data");
+  } else {
+    if (!A.allFinite()) throw InputError("LCP: non-finite data");
+  }
   // Principal blocks are factored by Cholesky, which reads one triangle only:
   // a non-symmetric matrix would be silently replaced by another one.
-  if (!A.isApprox(A.transpose(), 1e-12))
+  if (!A.isApprox(AnyMatrix(A.transpose()), 1e-12))
     throw InputError("LCP: matrix is not symmetric, expected a symmetric positive definite K_CC");
+  return A;
 }
 
 void check_data(const Vector& q, const std::vector<bool>& guess) {
@@ -230,9 +238,13 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   return r;
 }
 
-CachedLcpSolver::CachedLcpSolver(Matrix A)
-    : A_((check_matrix(A, A.rows()), A)), workspace_(A.rows()) {
-  a_max_ = A.size() > 0 ? A.cwiseAbs().maxCoeff() : 0.0;
+CachedLcpSolver::CachedLcpSolver(const Matrix& A)
+    : A_(check_matrix(A, A.rows())), a_max_(A_.max_abs()), workspace_(A.rows()) {
+  result_.active.reserve(A.rows());
+}
+
+CachedLcpSolver::CachedLcpSolver(const SparseMatrix& A)
+    : A_(check_matrix(A, A.rows())), a_max_(A_.max_abs()), workspace_(A.rows()) {
   result_.active.reserve(A.rows());
 }
 
@@ -242,7 +254,7 @@ const PrincipalBlockFactor& CachedLcpSolver::principal_factor(const std::vector<
 }
 
 const LcpResult& CachedLcpSolver::solve(const Vector& q, const std::vector<bool>& guess) const {
-  const Index n = A_.dense().rows();
+  const Index n = A_.size();
   if (q.size() != n)
     throw InputError("LCP: q has size " + std::to_string(q.size()) + ", expected " +
                      std::to_string(n) + " (the size of the matrix)");

@@ -67,7 +67,10 @@ class LcpSolver {
 class CachedLcpSolver {
  public:
   /// Checks A as LcpSolver::solve does (size, finite, symmetric), once.
-  explicit CachedLcpSolver(Matrix A);
+  /// A sparse A (K_CC) is kept sparse unless it is dense enough
+  /// (principal_block.hpp).
+  explicit CachedLcpSolver(const Matrix& A);
+  explicit CachedLcpSolver(const SparseMatrix& A);
 
   /// The solution for q (size n), warm-started from `guess` (size n); valid
   /// until the next call. Throws as LcpSolver::solve does.

@@ -4,10 +4,28 @@
 
 namespace nbm {
 
-PrincipalBlocks::PrincipalBlocks(const Matrix& A) : A_(A) {
-  const Index nonzeros = (A_.array() != 0.0).count();
-  sparse_ = A_.size() > 0 && kSparseFraction * nonzeros <= A_.size();
-  if (sparse_) A_sparse_ = A_.sparseView(0.0, 0.0);
+PrincipalBlocks::PrincipalBlocks(const Matrix& A) {
+  const Index nonzeros = (A.array() != 0.0).count();
+  sparse_ = A.size() > 0 && kSparseFraction * nonzeros <= A.size();
+  if (sparse_)
+    A_sparse_ = A.sparseView(0.0, 0.0);
+  else
+    A_ = A;
+}
+
+PrincipalBlocks::PrincipalBlocks(const SparseMatrix& A) {
+  SparseMatrix pruned = A.pruned(0.0, 0.0);  // explicit zeros are not couplings
+  const double entries = static_cast<double>(A.rows()) * static_cast<double>(A.cols());
+  sparse_ = entries > 0 && kSparseFraction * static_cast<double>(pruned.nonZeros()) <= entries;
+  if (sparse_)
+    A_sparse_ = std::move(pruned);
+  else
+    A_ = Matrix(pruned);
+}
+
+double PrincipalBlocks::max_abs() const {
+  if (sparse_) return A_sparse_.nonZeros() > 0 ? A_sparse_.coeffs().cwiseAbs().maxCoeff() : 0.0;
+  return A_.size() > 0 ? A_.cwiseAbs().maxCoeff() : 0.0;
 }
 
 void PrincipalBlocks::add_product(const Vector& x, Vector& y) const {
@@ -30,7 +48,7 @@ PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::
     return;
   }
   // A[F, F] from the columns of F, rows renumbered (position in F, -1 outside).
-  std::vector<Index> position(static_cast<std::size_t>(A.A_.rows()), -1);
+  std::vector<Index> position(static_cast<std::size_t>(A.A_sparse_.rows()), -1);
   for (Index a = 0; a < m; ++a) position[static_cast<std::size_t>(F[a])] = a;
   std::vector<Triplet> entries;
   for (Index b = 0; b < m; ++b)

@@ -77,7 +77,7 @@ TEST(ContactProblem, ContactBlockAndConstraintBasis) {
   const Mat N = pp.normals();
   // K_CC = N' K N: the stiffness between normal displacements.
   const Mat K_CC = N.transpose() * Mat(pp.a.K) * N;
-  EXPECT_LE((P.K_CC() - K_CC).cwiseAbs().maxCoeff(), 1e-12 * K_CC.cwiseAbs().maxCoeff());
+  EXPECT_LE((Mat(P.K_CC()) - K_CC).cwiseAbs().maxCoeff(), 1e-12 * K_CC.cwiseAbs().maxCoeff());
   // B = [K(:, C)  E_C].
   const Mat B = Mat(P.constraint_basis());
   const Index nc = P.n_contact();

@@ -390,12 +390,22 @@ TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
   std::mt19937 rng(23);
   const Index n = 60;
   const Mat sparse = sparse_spd(n, rng), dense = nbm_test::random_spd(n, 1e4, rng);
-  const nbm::PrincipalBlocks sparse_blocks(sparse), dense_blocks(dense);
+  // The sparse matrix given dense and sparse: both kept sparse.
+  const nbm::PrincipalBlocks sparse_blocks(sparse), sparse_given_sparse(Sparse(sparse.sparseView())),
+      dense_blocks(dense), dense_given_sparse(Sparse(dense.sparseView()));
   EXPECT_TRUE(sparse_blocks.sparse());
+  EXPECT_TRUE(sparse_given_sparse.sparse());
   EXPECT_FALSE(dense_blocks.sparse());
+  EXPECT_FALSE(dense_given_sparse.sparse());
+  EXPECT_EQ(sparse_blocks.max_abs(), sparse.cwiseAbs().maxCoeff());
+  EXPECT_EQ(dense_given_sparse.max_abs(), dense.cwiseAbs().maxCoeff());
   std::bernoulli_distribution coin(0.5);
-  for (const auto* blocks : {&sparse_blocks, &dense_blocks}) {
-    const Mat& A = blocks->dense();
+  const std::pair<const nbm::PrincipalBlocks*, const Mat*> cases[] = {
+      {&sparse_blocks, &sparse}, {&sparse_given_sparse, &sparse}, {&dense_blocks, &dense},
+      {&dense_given_sparse, &dense}};
+  for (const auto& [blocks, matrix] : cases) {
+    const Mat& A = *matrix;
+    ASSERT_EQ(blocks->size(), n);
     // y += A x against the dense product.
     const Vec x = nbm_test::random_vector(n, rng);
     Vec y = nbm_test::random_vector(n, rng);
