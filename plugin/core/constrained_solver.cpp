@@ -33,14 +33,16 @@ void solve_through_halves(const CholeskyInverse& X, const SparseMatrix& Y, Colum
 
 }  // namespace
 
-ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const SpdInverse> X, const SparseMatrix& B)
+ConstrainedSolver::ConstrainedSolver(std::unique_ptr<DiagonalInverse> X, const SparseMatrix& B)
     : X_(std::move(X)),
+      diagonal_(static_cast<const DiagonalInverse*>(X_.get())),
       B_(B),
       n_c_(B.cols() / 2),
-      W_(X_->gram(B)),
+      sparse_W_(std::in_place, diagonal_->sparse_gram(B)),
       zero_(Vector::Zero(n_c_)),
-      mu_(n_c_),
-      correction_(B.rows()) {}
+      mu_(n_c_) {
+  F_.reserve(n_c_);
+}
 
 ConstrainedSolver::ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X,
                                      const SparseMatrix& B)
@@ -93,16 +95,31 @@ void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, Vector& 
 
 void ConstrainedSolver::solve(const ActiveSet& active, const Vector& r, const Vector& h,
                               Vector& x) const {
-  if (cholesky_ != nullptr) return solve_with_factor(active, r, h, x);
-  const auto& S = schur(active);
-  x = r;
-  X_->solve_in_place(x);
-  for (Index k = 0; k < n_c_; ++k) mu_(k) = h(k) - B_.col(column(active, k)).dot(x);
+  if (cholesky_ != nullptr)
+    solve_with_factor(active, r, h, x);
+  else
+    solve_with_diagonal(active, r, h, x);
+}
+
+void ConstrainedSolver::solve_with_diagonal(const ActiveSet& active, const Vector& r,
+                                            const Vector& h, Vector& x) const {
+  const Vector& d = diagonal_->inverse();
+  x = d.cwiseProduct(r);
+  F_.clear();
+  for (Index k = 0; k < n_c_; ++k)
+    if (!active[k]) F_.push_back(k);
+  for (Index k = 0; k < n_c_; ++k)
+    if (active[k]) F_.push_back(n_c_ + k);
+  const PrincipalBlockFactor& S =
+      blocks_.get(active, [&] { return PrincipalBlockFactor(*sparse_W_, F_); });
+  if (!S.positive_definite())
+    throw NumericalError("the constraint Schur complement of an active set is singular");
+  // mu in the order of F: column F_[a] of B is row a of G.
+  for (Index a = 0; a < n_c_; ++a) mu_(a) = h(F_[a] % n_c_) - B_.col(F_[a]).dot(x);
   S.solve_in_place(mu_);
-  correction_.setZero();
-  for (Index k = 0; k < n_c_; ++k) correction_ += mu_(k) * B_.col(column(active, k));
-  X_->solve_in_place(correction_);
-  x += correction_;
+  for (Index a = 0; a < n_c_; ++a)
+    for (SparseMatrix::InnerIterator it(B_, F_[a]); it; ++it)
+      x(it.row()) += mu_(a) * d(it.row()) * it.value();
 }
 
 void ConstrainedSolver::solve_with_factor(const ActiveSet& active, const Vector& r,

@@ -12,13 +12,17 @@
 // With a Cholesky factor X = P' L L' P, Y = L^{-1} P B (sparse) is kept:
 // G X^{-1} r = Y_G^T y with y = L^{-1} P r, and x = P' L^{-T} (y + Y_G mu),
 // so a solve is one forward and one backward substitution, as an
-// unconstrained one. Otherwise (a diagonal X) x is X^{-1} r corrected by
-// X^{-1} G^T mu.
+// unconstrained one. With a diagonal X (a lumped mass), x is X^{-1} r
+// corrected by X^{-1} G^T mu, and W is sparse (a contact node couples only to
+// the contact nodes its neighbours touch): its principal blocks get sparse
+// factors (principal_block.hpp), not dense ones.
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "active_set.hpp"
+#include "principal_block.hpp"
 #include "schur_factor.hpp"
 #include "spd_inverse.hpp"
 #include "types.hpp"
@@ -28,8 +32,8 @@ namespace nbm {
 class ConstrainedSolver {
  public:
   /// X may be shared with others (the Newmark iteration matrix is).
-  ConstrainedSolver(std::shared_ptr<const SpdInverse> X, const SparseMatrix& B);
   ConstrainedSolver(std::shared_ptr<const CholeskyInverse> X, const SparseMatrix& B);
+  ConstrainedSolver(std::unique_ptr<DiagonalInverse> X, const SparseMatrix& B);
   ConstrainedSolver(std::unique_ptr<CholeskyInverse> X, const SparseMatrix& B)
       : ConstrainedSolver(std::shared_ptr<const CholeskyInverse>(std::move(X)), B) {}
 
@@ -53,19 +57,29 @@ class ConstrainedSolver {
   const SchurFactor& schur(const ActiveSet& active) const;
   void solve_with_factor(const ActiveSet& active, const Vector& r, const Vector& h,
                          Vector& x) const;
+  void solve_with_diagonal(const ActiveSet& active, const Vector& r, const Vector& h,
+                           Vector& x) const;
 
   std::shared_ptr<const SpdInverse> X_;
   const CholeskyInverse* cholesky_ = nullptr;  // X_, when it is one
+  const DiagonalInverse* diagonal_ = nullptr;  // X_, when it is one
   const SparseMatrix& B_;
   Index n_c_;
-  Matrix W_;        // B^T X^-1 B (before Y_: the forward substitutions form both)
-  SparseMatrix Y_;  // L^{-1} P B, with cholesky_
-  // Memory: the cache's byte budget plus the base (bordered factors hold
-  // 2 n_c r doubles each, a fresh one n_c^2).
+  // With cholesky_: W = B^T X^-1 B (before Y_: the forward substitutions form
+  // both), Y = L^{-1} P B; and the factors of W[c, c] (memory: the cache's
+  // byte budget plus the base; bordered factors hold 2 n_c r doubles each, a
+  // fresh one n_c^2).
+  Matrix W_;
+  SparseMatrix Y_;
   mutable ActiveSetCache<std::shared_ptr<const SchurFactor>> schur_;
   mutable std::shared_ptr<const SchurFactor> base_;
-  const Vector zero_;                  // h = 0
-  mutable Vector mu_, correction_;
+  // With diagonal_: W (sparse) and the factors of W[F, F], F the set's
+  // columns in ascending order (open nodes' stiffness columns first).
+  std::optional<PrincipalBlocks> sparse_W_;
+  mutable ActiveSetCache<PrincipalBlockFactor> blocks_;
+  mutable std::vector<Index> F_;
+  const Vector zero_;  // h = 0
+  mutable Vector mu_;
 };
 
 /// x solves X x = r + G^T mu, G x = h for one active set, with an X used for

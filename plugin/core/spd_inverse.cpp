@@ -216,22 +216,6 @@ class CholmodInverse final : public CholeskyInverse {
   mutable Vector supernode_work_;  // CHOLMOD's workspace E of a supernodal substitution
 };
 
-class DiagonalInverse final : public SpdInverse {
- public:
-  explicit DiagonalInverse(Vector inv) : inv_(std::move(inv)) {}
-  Index size() const override { return inv_.size(); }
-  void solve_in_place(Matrix& x) const override { x = inv_.asDiagonal() * x; }
-  void solve_in_place(Vector& x) const override { x = inv_.cwiseProduct(x); }
-  Matrix gram(const SparseMatrix& B) const override {
-    // Stays sparse: B^T D^{-1} B costs what B costs.
-    const SparseMatrix DB = inv_.asDiagonal() * B;
-    return Matrix(SparseMatrix(B.transpose()) * DB);
-  }
-
- private:
-  Vector inv_;
-};
-
 }  // namespace
 
 std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
@@ -245,7 +229,13 @@ std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
   return std::make_unique<CholmodInverse>(X, what, constraints);
 }
 
-std::unique_ptr<SpdInverse> make_diagonal_inverse(const Vector& d, const std::string& what) {
+SparseMatrix DiagonalInverse::sparse_gram(const SparseMatrix& B) const {
+  // B^T D^{-1} B costs what B costs.
+  const SparseMatrix DB = inverse_.asDiagonal() * B;
+  return SparseMatrix(SparseMatrix(B.transpose()) * DB);
+}
+
+std::unique_ptr<DiagonalInverse> make_diagonal_inverse(const Vector& d, const std::string& what) {
   for (Index i = 0; i < d.size(); ++i)
     if (!(d(i) > 0))
       throw InputError(what + ": entry " + std::to_string(i) + " is " + std::to_string(d(i)) +

@@ -52,8 +52,25 @@ std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
                                                        const std::string& what,
                                                        const SparseMatrix& constraints);
 
-/// Inverse of a positive diagonal matrix (a lumped mass). Throws InputError
-/// naming `what` if an entry is not positive.
-std::unique_ptr<SpdInverse> make_diagonal_inverse(const Vector& d, const std::string& what);
+/// Inverse of a positive diagonal matrix D (a lumped mass).
+class DiagonalInverse final : public SpdInverse {
+ public:
+  explicit DiagonalInverse(Vector inverse) : inverse_(std::move(inverse)) {}
+  Index size() const override { return inverse_.size(); }
+  void solve_in_place(Matrix& x) const override { x = inverse_.asDiagonal() * x; }
+  void solve_in_place(Vector& x) const override { x = inverse_.cwiseProduct(x); }
+  Matrix gram(const SparseMatrix& B) const override { return Matrix(sparse_gram(B)); }
+  /// B^T D^{-1} B, sparse: a column of B couples only to the columns that
+  /// share a row with it.
+  SparseMatrix sparse_gram(const SparseMatrix& B) const;
+  /// The diagonal of D^{-1}.
+  const Vector& inverse() const { return inverse_; }
+
+ private:
+  Vector inverse_;
+};
+
+/// Throws InputError naming `what` if an entry of d is not positive.
+std::unique_ptr<DiagonalInverse> make_diagonal_inverse(const Vector& d, const std::string& what);
 
 }  // namespace nbm

@@ -10,6 +10,7 @@
 #include "nodal_boundary.hpp"
 #include "spd_inverse.hpp"
 #include "test_problems.hpp"
+#include "test_stepping.hpp"
 #include "test_util.hpp"
 
 namespace {
@@ -200,6 +201,49 @@ TEST(ConstrainedSolver, MatchesADenseKktSolve) {
     EXPECT_LE((G * x - h).cwiseAbs().maxCoeff(), 1e-9);
   }
   EXPECT_EQ(cs.inverse().size(), n);
+}
+
+TEST(ConstrainedSolver, LumpedMassMatchesADenseKktSolve) {
+  // The explicit scheme's X = diag(m): W = B' X^-1 B is sparse and so are the
+  // factors of its Schur complements; the same dense KKT reference, on a
+  // plate with enough contact nodes (33) for sparse blocks, sets that
+  // recur (cached factors) and one empty of open nodes.
+  nbm_test::Plate plate;
+  plate.nx = 32;
+  plate.ny = 4;
+  const nbm_test::Simulation sim(nbm_test::assemble(plate), nbm_test::bottom_contact(plate, 0.0));
+  const nbm::ContactProblem& P = *sim.problem;
+  const Vec m = P.lumped_mass();
+  const nbm::ConstrainedSolver cs(nbm::make_diagonal_inverse(m, "m"), P.constraint_basis());
+  ASSERT_TRUE(nbm::PrincipalBlocks(nbm::make_diagonal_inverse(m, "m")->sparse_gram(P.constraint_basis()))
+                  .sparse());
+  const Mat B = Mat(P.constraint_basis());
+  const Index n = P.size(), nc = P.n_contact();
+  std::mt19937 rng(22);
+  std::vector<nbm::ActiveSet> sets;
+  for (int trial = 0; trial < 5; ++trial) {
+    nbm::ActiveSet set(nc);
+    for (auto&& s : set) s = rng() % 2;
+    sets.push_back(set);
+  }
+  sets.push_back(nbm::ActiveSet(nc, true));
+  sets.push_back(sets[1]);
+  for (const nbm::ActiveSet& set : sets) {
+    Mat G(nc, n);
+    for (Index k = 0; k < nc; ++k) G.row(k) = B.col(set[k] ? nc + k : k).transpose();
+    Mat KKT = Mat::Zero(n + nc, n + nc);
+    KKT.topLeftCorner(n, n) = Mat(m.asDiagonal());
+    KKT.topRightCorner(n, nc) = G.transpose();
+    KKT.bottomLeftCorner(nc, n) = G;
+    const Vec r = nbm_test::random_vector(n, rng), h = nbm_test::random_vector(nc, rng);
+    Vec rhs(n + nc);
+    rhs << r, h;
+    const Vec ref = KKT.fullPivLu().solve(rhs).head(n);
+    Vec x;
+    cs.solve(set, r, h, x);
+    EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-10 * ref.cwiseAbs().maxCoeff());
+    EXPECT_LE((G * x - h).cwiseAbs().maxCoeff(), 1e-9 * std::max(1.0, (G.cwiseAbs() * x.cwiseAbs()).maxCoeff()));
+  }
 }
 
 // ----------------------------------------------------------- SpdInverse
