@@ -7,7 +7,7 @@ packages=(
   freefem++ libfreefem++-dev gmsh gnuplot-nox
   libeigen3-dev libsuitesparse-dev
   libopenblas0-pthread          # optimised BLAS/LAPACK for CHOLMOD and the core's
-  libblas-dev                   # dense kernels (issue 14), see below; -lblas to link
+  libblas-dev liblapack-dev     # dense kernels (issue 14), see below; -lblas -llapack to link
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev   # libFuzzer (tests/fuzz/run.sh); gcc's ASan/UBSan
                                 # runtimes (tests/sanitize.sh) come with build-essential

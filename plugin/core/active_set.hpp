@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "dense_cholesky.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -16,9 +17,7 @@ namespace nbm {
 using ActiveSet = std::vector<bool>;
 
 /// Bytes held by a dense Cholesky factorization (its factor, the object).
-inline std::size_t factor_bytes(const Eigen::LLT<Matrix>& f) {
-  return sizeof(f) + static_cast<std::size_t>(f.matrixLLT().size()) * sizeof(double);
-}
+inline std::size_t factor_bytes(const DenseCholesky& f) { return sizeof(f) + f.bytes(); }
 /// Bytes held by a shared factor that has a bytes() method.
 template <class Factor>
 std::size_t factor_bytes(const std::shared_ptr<const Factor>& f) {

@@ -42,8 +42,14 @@ const AnyMatrix& check_matrix(const AnyMatrix& A, Index n) {
     if (!A.allFinite()) throw InputError("LCP: non-finite data");
   }
   // Principal blocks are factored by Cholesky, which reads one triangle only:
-  // a non-symmetric matrix would be silently replaced by another one.
-  if (!A.isApprox(AnyMatrix(A.transpose()), 1e-12))
+  // a non-symmetric matrix would be silently replaced by another one. (A
+  // dense matrix is compared with its transpose in place, without a copy.)
+  bool symmetric = false;
+  if constexpr (std::is_same_v<AnyMatrix, SparseMatrix>)
+    symmetric = A.isApprox(SparseMatrix(A.transpose()), 1e-12);
+  else
+    symmetric = A.isApprox(A.transpose(), 1e-12);
+  if (!symmetric)
     throw InputError("LCP: matrix is not symmetric, expected a symmetric positive definite K_CC");
   return A;
 }
@@ -238,9 +244,11 @@ LcpResult LcpSolver::solve(const Matrix& A, const Vector& q, const std::vector<b
   return r;
 }
 
-CachedLcpSolver::CachedLcpSolver(const Matrix& A)
-    : A_(check_matrix(A, A.rows())), a_max_(A_.max_abs()), workspace_(A.rows()) {
-  result_.active.reserve(A.rows());
+CachedLcpSolver::CachedLcpSolver(Matrix A)
+    : A_((check_matrix(A, A.rows()), std::move(A))),
+      a_max_(A_.max_abs()),
+      workspace_(A_.size()) {
+  result_.active.reserve(A_.size());
 }
 
 CachedLcpSolver::CachedLcpSolver(const SparseMatrix& A)

@@ -69,7 +69,7 @@ class CachedLcpSolver {
   /// Checks A as LcpSolver::solve does (size, finite, symmetric), once.
   /// A sparse A (K_CC) is kept sparse unless it is dense enough
   /// (principal_block.hpp).
-  explicit CachedLcpSolver(const Matrix& A);
+  explicit CachedLcpSolver(Matrix A);
   explicit CachedLcpSolver(const SparseMatrix& A);
 
   /// The solution for q (size n), warm-started from `guess` (size n); valid

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "errors.hpp"
+#include "mass_solve.hpp"
 
 namespace nbm {
 namespace {
@@ -34,14 +35,22 @@ const Damping& check_boundary_undamped(const ContactProblem& problem, const Damp
 
 MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
                                                double beta, double gamma,
-                                               const Damping& damping)
+                                               const Damping& damping, ContactColumns columns)
     : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
       contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {
+  const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
+  keep_columns_ = columns == ContactColumns::kAuto
+                      ? 8 * S_.forward_entries(E_C) <= S_.factor_entries()
+                      : columns == ContactColumns::kKept;
   Matrix compliance;  // W_CC
-  Y_ = iteration_.contact_columns(&compliance);
-  lcp_ = std::make_unique<CachedLcpSolver>(iteration_.beta_dt2() * compliance);
+  if (keep_columns_)
+    Y_ = iteration_.contact_columns(&compliance);
+  else
+    compliance = iteration_.contact_compliance();
+  compliance *= iteration_.beta_dt2();
+  lcp_ = std::make_unique<CachedLcpSolver>(std::move(compliance));
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
@@ -54,10 +63,45 @@ void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
   Vector r = load.F - problem_.K() * u_;
   if (damped()) r -= C_ * v_;
   for (Index c : problem_.contact_index()) r(c) = 0.0;
-  make_cholesky_inverse(M_reg, "M (interior block)")->solve_in_place(r);
-  a_ = r;
+  a_ = solve_mass(M_reg, r, "M (interior block)");
   acceleration_constraint(load, active_, h_accel_);
   boundary_.project(a_, active_, h_accel_);
+}
+
+const LcpResult& MasslessNewmarkStepper::contact_forces(const Vector& g) {
+  // z = lambda, w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda); the
+  // guess: lambda = 0 (z free) where contact is open.
+  const auto& c = problem_.contact_index();
+  const Index nc = problem_.n_contact();
+  q_.resize(nc);
+  for (Index k = 0; k < nc; ++k) q_(k) = (g(k) - u_hat_(c[k])) - iteration_.beta_dt2() * a_C_(k);
+  open_.resize(nc);
+  for (Index k = 0; k < nc; ++k) open_[k] = !active_[k];
+  return lcp_->solve(q_, open_);
+}
+
+const LcpResult& MasslessNewmarkStepper::accelerate(const Vector& g, Vector& a) {
+  const auto& c = problem_.contact_index();
+  const Index nc = problem_.n_contact();
+  a_C_.resize(nc);
+  if (keep_columns_) {
+    S_.forward_in_place(a);  // y
+    for (Index k = 0; k < nc; ++k) a_C_(k) = Y_.col(k).dot(a);
+    const LcpResult& lcp = contact_forces(g);
+    for (Index k = 0; k < nc; ++k)
+      if (lcp.z(k) != 0) a -= lcp.z(k) * Y_.col(k);
+    S_.backward_in_place(a);
+    return lcp;
+  }
+  S_.solve_in_place(a);
+  for (Index k = 0; k < nc; ++k) a_C_(k) = a(c[k]);
+  const LcpResult& lcp = contact_forces(g);
+  if (!(lcp.z.array() != 0.0).any()) return lcp;  // free flight: the plain step
+  correction_.setZero(a.size());
+  for (Index k = 0; k < nc; ++k) correction_(c[k]) = -lcp.z(k);
+  S_.solve_in_place(correction_);
+  a += correction_;
+  return lcp;
 }
 
 StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
@@ -68,8 +112,7 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   const Index nc = problem_.n_contact();
 
   // In acceleration form, u = u_hat + bdt2 a (no cancellation at small dt):
-  // S a = F - K u_hat - E_C lambda. The LCP in lambda (header): z = lambda,
-  // w = gap = g - u_hat_C - bdt2 (a_free_C - W_CC lambda), a_free_C = Y^T y.
+  // S a = F - K u_hat - E_C lambda with lambda from the LCP (header).
   Vector& a = acceleration_;
   a = next.F;
   a.noalias() -= problem_.K() * u_hat_;
@@ -79,16 +122,7 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
     for (Index k = 0; k < nc; ++k) Cv_(c[k]) = (1 - contact_row_scale_) * a(c[k]);
     a -= Cv_;
   }
-  S_.forward_in_place(a);  // y
-  q_.resize(nc);
-  for (Index k = 0; k < nc; ++k)
-    q_(k) = (g(k) - u_hat_(c[k])) - bdt2 * Y_.col(k).dot(a);
-  open_.resize(nc);
-  for (Index k = 0; k < nc; ++k) open_[k] = !active_[k];  // z = lambda = 0 where open
-  const LcpResult& lcp = lcp_->solve(q_, open_);
-  for (Index k = 0; k < nc; ++k)
-    if (lcp.z(k) != 0) a -= lcp.z(k) * Y_.col(k);
-  S_.backward_in_place(a);
+  const LcpResult& lcp = accelerate(g, a);
 
   u_ = u_hat_ + bdt2 * a;
   a_.swap(a);  // acceleration_: a workspace again from here

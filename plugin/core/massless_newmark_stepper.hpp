@@ -15,6 +15,17 @@
 // Y = L^-1 P E_C (sparse, kept), W_CC = Y^T Y, (S^-1 r)_C = Y^T y for
 // y = L^-1 P r, and a = P' L^-T (y - Y lambda).
 //
+// Where Y is large next to L (a 3D body's contact face: its columns reach
+// the large separators at the top of the elimination tree), Y is not kept:
+// a = S^-1 r is solved whole, (S^-1 r)_C read from it, and a step with
+// contact forces solves once more for S^-1 E_C lambda. A step in free
+// flight is then the plain step, one with contact two; with Y every step
+// costs a substitution pair plus the two products with Y (about
+// 2 nnz(Y) / nnz(L) of a pair). Y is kept when nnz(Y) <= nnz(L) / 8: so
+// unless contact forces act in more than an eighth of the steps, the choice
+// costs at most what it saves, and it saves Y's memory (3.4 GB on the 3D
+// block of 1e6 dofs, where L holds 15 GB).
+//
 // Damping (method.md §9): the contact dofs carry no damping of their own
 // either (C_user's rows and columns of the contact dofs must vanish; a_M M
 // is redistributed with M), except Rayleigh's stiffness part b_K K, whose
@@ -34,17 +45,25 @@
 
 namespace nbm {
 
+/// Whether Y = L^-1 P E_C is kept (header): by its size next to L's, or
+/// forced (both paths give the same steps to round-off; tests compare them).
+enum class ContactColumns { kAuto, kKept, kRecomputed };
+
 class MasslessNewmarkStepper final : public NbmStepper {
  public:
   /// The problem must have a massless boundary (ContactProblem::
-  /// make_boundary_massless). Factors S once and forms Y and W_CC (n_contact
-  /// sparse forward substitutions).
+  /// make_boundary_massless). Factors S once and forms W_CC, and Y if it is
+  /// kept (n_contact sparse forward substitutions).
   /// Throws InputError on beta, gamma out of (0, 1/2] x [1/2, 1] or a problem
   /// with boundary mass, NumericalError if S is not positive definite.
   /// Throws InputError, too, if the damping matrix C_user couples a
   /// contact dof.
   MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
-                         double gamma = 0.5, const Damping& damping = {});
+                         double gamma = 0.5, const Damping& damping = {},
+                         ContactColumns columns = ContactColumns::kAuto);
+
+  /// Whether Y is kept.
+  bool keeps_contact_columns() const { return keep_columns_; }
 
   using Stepper::step;
 
@@ -58,13 +77,20 @@ class MasslessNewmarkStepper final : public NbmStepper {
   StepReport advance_interior(const ContactLoad& next) override;
 
  private:
+  /// a <- S^-1 (a - E_C lambda) with lambda the LCP's solution for
+  /// a_free_C = (S^-1 a)_C (header), with Y or by whole solves; the LCP's
+  /// result (z = lambda).
+  const LcpResult& accelerate(const Vector& g, Vector& a);
+  const LcpResult& contact_forces(const Vector& g);  // the LCP for a_C_
+
   NewmarkIteration iteration_;
   const CholeskyInverse& S_;              // the iteration matrix
-  SparseMatrix Y_;                        // L^-1 P E_C
+  bool keep_columns_;                     // Y kept (header)
+  SparseMatrix Y_;                        // L^-1 P E_C, if kept
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   double contact_row_scale_;              // s of the header (1 without b_K)
   // Workspaces of a step (sized by the first one).
-  Vector u_hat_, v_pred_, acceleration_, q_, h_accel_, Cv_;
+  Vector u_hat_, v_pred_, acceleration_, correction_, q_, a_C_, h_accel_, Cv_;
   ActiveSet open_;
 };
 

@@ -4,13 +4,13 @@
 
 namespace nbm {
 
-PrincipalBlocks::PrincipalBlocks(const Matrix& A) {
+PrincipalBlocks::PrincipalBlocks(Matrix A) {
   const Index nonzeros = (A.array() != 0.0).count();
   sparse_ = A.size() > 0 && kSparseFraction * nonzeros <= A.size();
   if (sparse_)
     A_sparse_ = A.sparseView(0.0, 0.0);
   else
-    A_ = A;
+    A_ = std::move(A);
 }
 
 PrincipalBlocks::PrincipalBlocks(const SparseMatrix& A) {
@@ -43,8 +43,8 @@ PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::
     Matrix block(m, m);
     for (Index b = 0; b < m; ++b)
       for (Index a = 0; a < m; ++a) block(a, b) = A.A_(F[a], F[b]);
-    dense_.emplace(block);
-    positive_definite_ = dense_->info() == Eigen::Success;
+    dense_.emplace(std::move(block));
+    positive_definite_ = dense_->positive_definite();
     return;
   }
   // A[F, F] from the columns of F, rows renumbered (position in F, -1 outside).
@@ -69,7 +69,7 @@ PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::
 void PrincipalBlockFactor::solve_in_place(Eigen::Ref<Vector> x) const {
   if (x.size() == 0) return;
   if (dense_) {
-    dense_->solveInPlace(x);
+    dense_->solve_in_place(x);
     return;
   }
   work_ = P_ * x;
@@ -80,11 +80,11 @@ void PrincipalBlockFactor::solve_in_place(Eigen::Ref<Vector> x) const {
 
 std::size_t PrincipalBlockFactor::bytes() const {
   const auto doubles =
-      static_cast<std::size_t>((dense_ ? dense_->matrixLLT().size() : 0) + work_.size());
+      static_cast<std::size_t>(work_.size());
   const auto sparse = static_cast<std::size_t>(L_.nonZeros()) * (sizeof(double) + sizeof(int)) +
                       static_cast<std::size_t>(L_.outerSize() + 1) * sizeof(int) +
                       static_cast<std::size_t>(P_.size() + P_inverse_.size()) * sizeof(int);
-  return doubles * sizeof(double) + sparse;
+  return (dense_ ? dense_->bytes() : 0) + doubles * sizeof(double) + sparse;
 }
 
 }  // namespace nbm

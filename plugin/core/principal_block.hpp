@@ -13,10 +13,10 @@
 // blocked Cholesky factor.
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <optional>
 #include <vector>
 
+#include "dense_cholesky.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -29,7 +29,7 @@ namespace nbm {
 class PrincipalBlocks {
  public:
   /// A: symmetric (not checked here), in either storage.
-  explicit PrincipalBlocks(const Matrix& A);
+  explicit PrincipalBlocks(Matrix A);
   explicit PrincipalBlocks(const SparseMatrix& A);
 
   bool sparse() const { return sparse_; }
@@ -63,10 +63,8 @@ class PrincipalBlockFactor {
 
  private:
   bool positive_definite_ = true;
-  // A[F, F] of a dense A (else L_ holds it, or F is empty). Optional: an LLT
-  // never computed leaves its status uninitialized, which moving the factor
-  // into the cache would read (UBSan), and asserts if asked anything.
-  std::optional<Eigen::LLT<Matrix>> dense_;
+  // A[F, F] of a dense A (else L_ holds it, or F is empty).
+  std::optional<DenseCholesky> dense_;
   // Of a sparse A: P A[F, F] P^T = L L^T.
   SparseMatrix L_;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> P_, P_inverse_;

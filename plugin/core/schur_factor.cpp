@@ -10,11 +10,11 @@ namespace {
 // Every matrix factored here is positive definite if W is (a principal
 // submatrix of W, its Schur complement in a larger one, or E^T T^-1 E): a
 // failure means a singular constraint Schur complement.
-Eigen::LLT<Matrix> cholesky(const Matrix& A) {
-  Eigen::LLT<Matrix> llt(A);
-  if (llt.info() != Eigen::Success)
+DenseCholesky cholesky(Matrix&& A) {
+  DenseCholesky factor(std::move(A));
+  if (!factor.positive_definite())
     throw NumericalError("the constraint Schur complement of an active set is singular");
-  return llt;
+  return factor;
 }
 
 }  // namespace
@@ -26,8 +26,8 @@ SchurFactor::SchurFactor(const Matrix& W, std::vector<Index> columns)
   Matrix S(n, n);
   for (Index b = 0; b < n; ++b)
     for (Index a = b; a < n; ++a) S(a, b) = W(columns_[a], columns_[b]);
-  // Blocked Cholesky, at matrix-product speed (Eigen's LDLT is unblocked).
-  llt_ = cholesky(S);
+  // Blocked Cholesky, at matrix-product speed (dense_cholesky.hpp).
+  llt_ = cholesky(std::move(S));
 }
 
 SchurFactor::SchurFactor(const Matrix& W, std::vector<Index> columns,
@@ -53,21 +53,21 @@ SchurFactor::SchurFactor(const Matrix& W, std::vector<Index> columns,
   const auto L0 = base_->llt_.matrixL();
   L0.solveInPlace(X_);
   C.selfadjointView<Eigen::Lower>().rankUpdate(X_.transpose(), -1.0);
-  llt_ = cholesky(C);
+  llt_ = cholesky(std::move(C));
   // V = L_T^-1 E with E the unit columns of the removed rows c0(D) of T.
   V_ = Matrix::Zero(n + r, r);
   for (Index i = 0; i < r; ++i) V_(changed_[i], i) = 1.0;
   L0.solveInPlace(V_.topRows(n));
   V_.bottomRows(r).noalias() = -X_.transpose() * V_.topRows(n);
   llt_.matrixL().solveInPlace(V_.bottomRows(r));
-  capacitance_ = cholesky(V_.transpose() * V_);
+  capacitance_ = cholesky(Matrix(V_.transpose() * V_));
   w_.resize(n + r);
   t_.resize(r);
 }
 
 void SchurFactor::solve_in_place(Vector& x) const {
   if (fresh()) {
-    llt_.solveInPlace(x);
+    llt_.solve_in_place(x);
     return;
   }
   const Index n = static_cast<Index>(columns_.size()), r = t_.size();
@@ -87,7 +87,7 @@ void SchurFactor::solve_in_place(Vector& x) const {
   llt_.matrixL().solveInPlace(bottom);
   // z = L_T^-T (w + V t) with t such that z vanishes at the removed rows.
   t_.noalias() = -V_.transpose() * w_;
-  capacitance_.solveInPlace(t_);
+  capacitance_.solve_in_place(t_);
   w_.noalias() += V_ * t_;
   llt_.matrixU().solveInPlace(bottom);
   top.noalias() -= X_ * bottom;
@@ -103,12 +103,8 @@ Index SchurFactor::changes(const std::vector<Index>& a, const std::vector<Index>
 }
 
 std::size_t SchurFactor::bytes() const {
-  // A fresh factor has no capacitance system (an LLT never computed, whose
-  // matrixLLT() Eigen's assertions refuse).
-  const Index capacitance = fresh() ? 0 : capacitance_.matrixLLT().size();
-  const auto doubles = static_cast<std::size_t>(llt_.matrixLLT().size() + X_.size() + V_.size() +
-                                                capacitance + w_.size() + t_.size());
-  return sizeof(*this) + doubles * sizeof(double) +
+  const auto doubles = static_cast<std::size_t>(X_.size() + V_.size() + w_.size() + t_.size());
+  return sizeof(*this) + llt_.bytes() + capacitance_.bytes() + doubles * sizeof(double) +
          (columns_.size() + changed_.size()) * sizeof(Index);
 }
 

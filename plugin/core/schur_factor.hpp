@@ -16,10 +16,10 @@
 // one, plus O(n r). Measured: bench/why.md, "Many contact nodes".
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <memory>
 #include <vector>
 
+#include "dense_cholesky.hpp"
 #include "types.hpp"
 
 namespace nbm {
@@ -49,12 +49,12 @@ class SchurFactor {
 
  private:
   std::vector<Index> columns_;
-  Eigen::LLT<Matrix> llt_;                  // fresh: of S; bordered: of T's new block
+  DenseCholesky llt_;                       // fresh: of S; bordered: of T's new block
   std::shared_ptr<const SchurFactor> base_;  // bordered only
   std::vector<Index> changed_;              // D, the nodes whose column differs from base's
   Matrix X_;                                // L0^-1 W[c0, c(D)]  (n x r)
   Matrix V_;                                // L_T^-1 E_{c0(D)}   ((n + r) x r)
-  Eigen::LLT<Matrix> capacitance_;          // of V^T V = E^T T^-1 E
+  DenseCholesky capacitance_;               // of V^T V = E^T T^-1 E (bordered)
   mutable Vector w_, t_;                    // workspaces of a solve
 };
 

@@ -160,19 +160,26 @@ class CholmodInverse final : public CholeskyInverse {
   }
 
   using CholeskyInverse::forward;
-  /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4).
+  /// W = B' X^-1 B = Y' Y with Y = L^-1 P B (method.md §4), Y not kept.
   Matrix gram(const SparseMatrix& B) const override {
+    check_rows(B);
     Matrix W;
-    forward(B, &W);
+    supernodal_forward(*L_, B, nullptr, &W);
     return W;
   }
 
   SparseMatrix forward(const SparseMatrix& B, Matrix* gram) const override {
-    if (B.rows() != n_)
-      throw InputError("forward: a matrix with " + std::to_string(B.rows()) + " rows, expected " +
-                       std::to_string(n_));
-    return supernodal_forward(*L_, B, gram);
+    check_rows(B);
+    SparseMatrix Y;
+    supernodal_forward(*L_, B, &Y, gram);
+    return Y;
   }
+
+  double forward_entries(const SparseMatrix& B) const override {
+    check_rows(B);
+    return nbm::forward_entries(*L_, B);
+  }
+  double factor_entries() const override { return static_cast<double>(L_->xsize); }
 
   // x <- X^{-1} x for `cols` columns in place (several right-hand sides at once).
   void solve(double* x, Index cols) const {
@@ -182,6 +189,12 @@ class CholmodInverse final : public CholeskyInverse {
       throw NumericalError("CHOLMOD solve failed (out of memory?)");
     const double* s = static_cast<const double*>(solution_->x);
     std::copy(s, s + n_ * cols, x);
+  }
+
+  void check_rows(const SparseMatrix& B) const {
+    if (B.rows() != n_)
+      throw InputError("forward: a matrix with " + std::to_string(B.rows()) + " rows, expected " +
+                       std::to_string(n_));
   }
 
   void check_size(const Vector& x) const {

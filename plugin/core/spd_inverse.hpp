@@ -36,6 +36,11 @@ class CholeskyInverse : public SpdInverse {
   /// B^T X^{-1} B, formed as Y is.
   virtual SparseMatrix forward(const SparseMatrix& B, Matrix* gram) const = 0;
   SparseMatrix forward(const SparseMatrix& B) const { return forward(B, nullptr); }
+  /// The entries forward(B) would have (with the zeros of the supernodal
+  /// pattern), counted on the symbolic factor, and L's entries: what a
+  /// product with Y costs next to a substitution.
+  virtual double forward_entries(const SparseMatrix& B) const = 0;
+  virtual double factor_entries() const = 0;
 };
 
 /// Sparse Cholesky (CHOLMOD, supernodal). Throws NumericalError naming `what`

@@ -1,8 +1,10 @@
 #include "supernodal_forward.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <vector>
 
+#include "errors.hpp"
 #include "gram.hpp"
 
 namespace nbm {
@@ -100,7 +102,8 @@ std::vector<std::vector<int>> reach(const Supernodes& S, const EntriesBySupernod
 
 }  // namespace
 
-SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, Matrix* gram) {
+void supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, SparseMatrix* Y_out,
+                        Matrix* gram) {
   const Supernodes S(L);
   const int n = static_cast<int>(L.n), m = static_cast<int>(B.cols());
   const EntriesBySupernode E(S, B, static_cast<const int*>(L.Perm));
@@ -110,10 +113,14 @@ SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, 
   // supernodes it reaches (exact zeros are dropped below).
   SparseMatrix Y(n, m);
   std::vector<Index> bound(m + 1, 0);
-  for (int s = 0; s < S.count; ++s)
-    for (int j : columns[s]) bound[j + 1] += S.width(s);
-  for (int j = 0; j < m; ++j) bound[j + 1] += bound[j];
-  Y.resizeNonZeros(bound[m]);
+  if (Y_out != nullptr) {
+    for (int s = 0; s < S.count; ++s)
+      for (int j : columns[s]) bound[j + 1] += S.width(s);
+    for (int j = 0; j < m; ++j) bound[j + 1] += bound[j];
+    if (bound[m] > std::numeric_limits<int>::max())
+      throw NumericalError("forward substitutions: more than 2^31 entries in L^-1 P B");
+    Y.resizeNonZeros(bound[m]);
+  }
   int* inner = Y.innerIndexPtr();
   double* value = Y.valuePtr();
   std::vector<Index> end(bound.begin(), bound.end() - 1);  // next free entry of each column
@@ -157,7 +164,7 @@ SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, 
     Ls.topRows(w).triangularView<Eigen::Lower>().solveInPlace(F.topRows(w));
     if (h > w) F.bottomRows(h - w).noalias() -= Ls.bottomRows(h - w) * F.topRows(w);
 
-    for (int a = 0; a < k; ++a) {
+    for (int a = 0; a < k && Y_out != nullptr; ++a) {
       const int j = cols[a];
       for (int t = 0; t < w; ++t)
         if (const double v = F(t, a); v != 0.0) {
@@ -174,6 +181,8 @@ SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, 
     for (int t = 0; t < h; ++t) local_row[rows[t]] = -1;
   }
 
+  if (gram != nullptr) *gram = W.finish();
+  if (Y_out == nullptr) return;
   // Close the gaps left by the dropped zeros (columns move down, in order).
   int* outer = Y.outerIndexPtr();
   Index filled = 0;
@@ -187,8 +196,7 @@ SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, 
   outer[m] = static_cast<int>(filled);
   Y.data().resize(filled);
   Y.data().squeeze();
-  if (gram != nullptr) *gram = W.finish();
-  return Y;
+  *Y_out = std::move(Y);
 }
 
 }  // namespace nbm

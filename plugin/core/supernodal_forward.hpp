@@ -22,11 +22,12 @@
 
 namespace nbm {
 
-/// Y = L^-1 P B for the supernodal LL' factor L of CHOLMOD (int indices),
-/// exact zeros left out (so the pattern is the reach of B's columns in the
-/// elimination tree); with `gram`, also *gram = Y^T Y (dense, symmetric to
-/// the last bit).
-SparseMatrix supernodal_forward(const cholmod_factor& L, const SparseMatrix& B,
-                                Matrix* gram = nullptr);
+/// For the supernodal LL' factor L of CHOLMOD (int indices): with Y,
+/// *Y = L^-1 P B, exact zeros left out (so the pattern is the reach of B's
+/// columns in the elimination tree); with gram, *gram = Y^T Y (dense,
+/// symmetric to the last bit). Without Y, Y is never held whole: only the
+/// blocks of the supernodes under way.
+void supernodal_forward(const cholmod_factor& L, const SparseMatrix& B, SparseMatrix* Y,
+                        Matrix* gram);
 
 }  // namespace nbm

@@ -165,6 +165,13 @@ TEST(AllocationFree, MasslessNewmarkStep) {
   EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
 }
 
+TEST(AllocationFree, MasslessNewmarkStepRecomputingContactColumns) {
+  const DroppedPlate d(true);
+  nbm::MasslessNewmarkStepper stepper(*d.problem, 1e-3, 0.25, 0.5, {},
+                                      nbm::ContactColumns::kRecomputed);
+  EXPECT_EQ(allocations_in_replay(*d.problem, stepper, d.problem->to_internal(d.a.F), 100), 0);
+}
+
 // With damping (method.md §9) the steps keep their workspaces too.
 nbm::Damping rayleigh(double a_M, double b_K) {
   nbm::Damping d;

@@ -6,6 +6,7 @@
 
 #include "constrained_solver.hpp"
 #include "errors.hpp"
+#include "mass_solve.hpp"
 #include "newmark_stepper.hpp"
 #include "nodal_boundary.hpp"
 #include "spd_inverse.hpp"
@@ -330,6 +331,44 @@ TEST(SpdInverse, ErrorsNameTheMatrix) {
   d(2) = 0;
   nbm_test::expect_throw_with<nbm::InputError>(
       [&] { nbm::make_diagonal_inverse(d, "lumped M"); }, {"lumped M", "entry 2"});
+}
+
+TEST(SpdInverse, MassSolvesReachRoundOffWithoutAFactor) {
+  // solve_mass against dense solves: the plate's consistent mass, its
+  // redistributed mass with unit contact rows (the massless start), a mass
+  // whose diagonal is a poor preconditioner (cond 1e12: the iterations stall
+  // and M is factored), a zero right-hand side, and errors naming M.
+  PlateProblem pp;
+  const auto& P = *pp.problem;
+  std::mt19937 rng(31);
+  const Mat positions = nbm_test::node_positions(pp.p);
+  const nbm::ContactProblem massless(pp.a.M, pp.a.K, P.contacts(), P.fixed(), &positions);
+  const nbm::SparseMatrix& E_C = massless.constraint_basis().rightCols(massless.n_contact());
+  const nbm_test::Sparse redistributed = massless.M() + nbm_test::Sparse(E_C * E_C.transpose());
+  const nbm_test::Sparse stiff = nbm_test::random_spd(80, 1e12, rng).sparseView();
+  for (const nbm_test::Sparse* M : {&P.M(), &redistributed, &stiff}) {
+    const Vec r = nbm_test::random_vector(static_cast<int>(M->rows()), rng);
+    const Vec x = nbm::solve_mass(*M, r, "M");
+    const Vec ref = Mat(*M).llt().solve(r);
+    if (M == &stiff) {  // factored: as accurate as the dense factorization (cond eps = 1e-4)
+      EXPECT_LE((x - ref).norm(), 1e-3 * ref.norm());
+      continue;
+    }
+    EXPECT_LE((r - *M * x).norm(), nbm::kMassSolveTolerance * r.norm());
+    EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-13 * ref.cwiseAbs().maxCoeff());
+  }
+  EXPECT_EQ(nbm::solve_mass(P.M(), Vec::Zero(P.size()), "M"), Vec::Zero(P.size()));
+  Mat indefinite = Mat::Identity(4, 4);
+  indefinite(2, 2) = 0;
+  nbm_test::expect_throw_with<nbm::NumericalError>(
+      [&] { nbm::solve_mass(indefinite.sparseView(), Vec::Ones(4), "the mass M"); },
+      {"the mass M", "not positive definite", "diagonal entry 2"});
+  indefinite(2, 2) = 1;
+  indefinite(0, 1) = indefinite(1, 0) = 2;  // eigenvector (1, -1, 0, 0): eigenvalue -1
+  const Vec along_it = (Vec(4) << 1, -1, 0, 0).finished();
+  nbm_test::expect_throw_with<nbm::NumericalError>(
+      [&] { nbm::solve_mass(indefinite.sparseView(), along_it, "the mass M"); },
+      {"the mass M", "not positive definite"});
 }
 
 TEST(SpdInverse, NewmarkReportsAnIndefiniteIterationMatrix) {

@@ -5,6 +5,7 @@
 // and the byte bound of the per-active-set caches.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "active_set.hpp"
@@ -444,8 +445,36 @@ TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
                   .positive_definite());
 }
 
+TEST(DenseKernels, DenseCholeskySolvesAsADenseSolveAndReportsBadMatrices) {
+  // LAPACK's in-place factor against a dense solve, at sizes on both sides
+  // of its blocking, with a garbage upper triangle (only the lower one is
+  // read); an indefinite matrix and a non-finite entry are reported.
+  std::mt19937 rng(24);
+  for (const int n : {1, 7, 130, 600}) {
+    const Mat A = nbm_test::random_spd(n, 1e6, rng);
+    Mat lower = A;
+    lower.triangularView<Eigen::StrictlyUpper>().setConstant(std::nan(""));
+    const nbm::DenseCholesky factor(std::move(lower));
+    ASSERT_TRUE(factor.positive_definite()) << n;
+    EXPECT_EQ(factor.size(), n);
+    const Mat B = Mat::Random(n, 3);
+    Mat X = B;
+    factor.solve_in_place(X);
+    EXPECT_LE((A * X - B).cwiseAbs().maxCoeff(), 1e-8 * A.cwiseAbs().maxCoeff() * X.cwiseAbs().maxCoeff()) << n;
+    EXPECT_LE((X - A.llt().solve(B)).norm(), 1e-8 * X.norm()) << n;
+  }
+  Mat indefinite = nbm_test::random_spd(50, 10, rng);
+  indefinite(20, 20) = -100;
+  EXPECT_FALSE(nbm::DenseCholesky(Mat(indefinite)).positive_definite());
+  Mat not_finite = nbm_test::random_spd(50, 10, rng);
+  not_finite(30, 10) = std::nan("");
+  EXPECT_FALSE(nbm::DenseCholesky(std::move(not_finite)).positive_definite());
+  EXPECT_TRUE(nbm::DenseCholesky(Mat(0, 0)).positive_definite());  // empty: nothing to fail
+  EXPECT_EQ(nbm::DenseCholesky(Mat(0, 0)).size(), 0);
+}
+
 // A factor of a k x k matrix: 8 k^2 bytes.
-Eigen::LLT<Mat> factor_of_size(Index k) { return Eigen::LLT<Mat>(Mat::Identity(k, k)); }
+nbm::DenseCholesky factor_of_size(Index k) { return nbm::DenseCholesky(Mat::Identity(k, k)); }
 
 nbm::ActiveSet set_number(int i) {
   nbm::ActiveSet s(16);
@@ -457,7 +486,7 @@ TEST(DenseKernels, ActiveSetCacheStaysWithinItsByteBudget) {
   // 100 x 100 factors hold 80 kB each: a budget of 1 MB keeps 12 of them
   // (with their keys), never more bytes than the budget.
   const std::size_t budget = 1000000;
-  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(budget);
+  nbm::ActiveSetCache<nbm::DenseCholesky> cache(budget);
   int made = 0;
   auto make = [&] {
     ++made;
@@ -488,7 +517,7 @@ TEST(DenseKernels, ActiveSetCacheStaysWithinItsByteBudget) {
 TEST(DenseKernels, ActiveSetCacheKeepsAtMostItsBoundOnEntries) {
   // Small factors far below the byte budget: the bound on entries decides
   // (memory flat on long runs), least recently used first.
-  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(std::size_t(1) << 30, 5);
+  nbm::ActiveSetCache<nbm::DenseCholesky> cache(std::size_t(1) << 30, 5);
   int made = 0;
   auto make = [&] {
     ++made;
@@ -511,9 +540,9 @@ TEST(DenseKernels, ActiveSetCacheKeepsAtMostItsBoundOnEntries) {
 TEST(DenseKernels, ActiveSetCacheKeepsAFactorLargerThanItsBudget) {
   // The entry just made is what the caller uses: kept even alone above the
   // budget, and the only one kept.
-  nbm::ActiveSetCache<Eigen::LLT<Mat>> cache(1000);
+  nbm::ActiveSetCache<nbm::DenseCholesky> cache(1000);
   const auto& f = cache.get(set_number(1), [] { return factor_of_size(50); });
-  EXPECT_EQ(f.matrixLLT().rows(), 50);
+  EXPECT_EQ(f.size(), 50);
   EXPECT_EQ(cache.size(), 1u);
   cache.get(set_number(2), [] { return factor_of_size(50); });
   EXPECT_EQ(cache.size(), 1u);

@@ -223,6 +223,45 @@ TEST(MasslessNewmark, FreeFallOfTheCentreOfMassIsExact) {
   }
 }
 
+TEST(MasslessNewmark, RecomputedContactColumnsStepAsKeptOnes) {
+  // Y = L^-1 P E_C kept or not (the second solve of a step with contact
+  // forces instead of the products with Y): the same steps to round-off, the
+  // same active sets, through impacts on the inclined plane, undamped and
+  // with stiffness-proportional damping (the contact rows' scale s).
+  Plate p;
+  p.angle = 0.3;
+  const Eigen::MatrixXd positions = plate_positions(p);
+  for (const double b_K : {0.0, 1e-3}) {
+    SCOPED_TRACE("b_K = " + std::to_string(b_K));
+    Simulation s(assemble(p), nbm_test::bottom_contact(p, 0.02));
+    const nbm::ContactProblem problem(s.a.M, s.a.K, s.problem->contacts(), s.problem->fixed(),
+                                      &positions);
+    nbm::Damping damping;
+    damping.b_K = b_K;
+    nbm::MasslessNewmarkStepper kept(problem, 1e-3, 0.25, 0.5, damping,
+                                     nbm::ContactColumns::kKept),
+        recomputed(problem, 1e-3, 0.25, 0.5, damping, nbm::ContactColumns::kRecomputed);
+    EXPECT_TRUE(kept.keeps_contact_columns());
+    EXPECT_FALSE(recomputed.keeps_contact_columns());
+    const Vec F = problem.to_internal(s.a.F), zero = Vec::Zero(problem.size());
+    kept.initialize(zero, zero, F);
+    recomputed.initialize(zero, zero, F);
+    int closed_steps = 0;
+    for (int k = 1; k <= 400; ++k) {
+      kept.step(F);
+      recomputed.step(F);
+      ASSERT_EQ(kept.active(), recomputed.active()) << "step " << k;
+      closed_steps += std::count(kept.active().begin(), kept.active().end(), true) > 0;
+      for (const auto& [x, y] : {std::pair{&kept.u(), &recomputed.u()},
+                                 std::pair{&kept.v(), &recomputed.v()},
+                                 std::pair{&kept.a(), &recomputed.a()}})
+        EXPECT_LE((*x - *y).cwiseAbs().maxCoeff(), 1e-11 * x->cwiseAbs().maxCoeff())
+            << "step " << k;
+    }
+    EXPECT_GT(closed_steps, 20);
+  }
+}
+
 TEST(MasslessNewmark, RequiresAMasslessBoundary) {
   const Bar b;
   Simulation s(assemble(b), nbm_test::ground_contact());
