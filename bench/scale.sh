@@ -113,8 +113,10 @@ if [ "${REPORT_ONLY:-0}" != 1 ]; then
 fi
 
 # The tables' awk programs read the raw rows with t[name, case, pct] = time;
-# without a ScaleNbmSetup row (SCALE_NBM), the setup is the implicit sweep's.
-rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $16 != "" && (t["ScaleNbmSetup", k, $5] == "" || t["ScaleNbmSetup", k, $5] == "NA")) t["ScaleNbmSetup", k, $5] = $16 }'
+# without a ScaleNbmSetup row (SCALE_NBM), the setup is the implicit sweep's;
+# the massless boundary's setup is the one its sweep timed (ScaleNbmMasslessSetup).
+rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $16 != "" && (t["ScaleNbmSetup", k, $5] == "" || t["ScaleNbmSetup", k, $5] == "NA")) t["ScaleNbmSetup", k, $5] = $16
+  if ($1 == "ScaleNbmMasslessStepSweep" && $16 != "") t["ScaleNbmMasslessSetup", k, $5] = $16 }'
 {
   echo "## Large contact sets and 3D (issue 14)"
   echo
@@ -135,8 +137,8 @@ rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $1
   echo "Ratios against the plain contact-free step of the same matrices, same run. Raw data:"
   echo "${raw#"$repo"/} (times in us, memory in MB: held = heap growth of the solver objects)."
   echo
-  echo "| body | order | dofs | n_c | setup / factorization | memory after the sweep / plain | free flight / plain | changing step / plain | massless free flight / plain | massless changing / plain | explicit free flight / plain | explicit changing / plain | penalty changing / plain | NBM / penalty step | break-even (steps) | steps with a change | fallbacks | memory held (MB) |"
-  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+  echo "| body | order | dofs | n_c | setup / factorization | memory after the sweep / plain | free flight / plain | changing step / plain | massless setup / factorization | massless memory / plain | massless free flight / plain | massless changing / plain | explicit free flight / plain | explicit changing / plain | penalty changing / plain | NBM / penalty step | break-even (steps) | steps with a change | fallbacks | memory held (MB) |"
+  echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   awk -F, "$rows_awk"'
     function r(a, b) { return (a == "" || a == "NA" || b == "" || b == "NA" || b + 0 == 0) ? "-" : sprintf("%.2f", a / b) }
     NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; setup_of_sweep(); m[$1, k, $5] = $9; sw[$1, k, $5] = $10; fb[$1, k, $5] = $11
@@ -153,10 +155,12 @@ rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $1
         be = "-"
         if (sweep != "NA" && pen != "NA" && setup != "NA" && sweep != "" && pen != "" && setup != "")
           be = (pen + 0 > sweep + 0) ? sprintf("%.0f", (setup - pfac) / (pen - sweep)) : "never"
-        printf "| %s | P%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+        printf "| %s | P%s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
           body[f[1] + 1], f[2], dofs[k], nc[k, p], r(setup, pfac),
           r(m["ScaleNbmNewmarkStepSweep", k, p], pm["ScalePlainNewmarkStep", k]),
           r(t["ScaleNbmNewmarkStepFreeFlight", k, p], pn), r(sweep, pn),
+          r(t["ScaleNbmMasslessSetup", k, p], pfac),
+          r(m["ScaleNbmMasslessStepSweep", k, p], pm["ScalePlainNewmarkStep", k]),
           r(t["ScaleNbmMasslessStepFreeFlight", k, p], pn), r(t["ScaleNbmMasslessStepSweep", k, p], pn),
           r(t["ScaleNbmExplicitStepFreeFlight", k, p], pe), r(t["ScaleNbmExplicitStepSweep", k, p], pe),
           r(pen, pn), r(sweep, pen), be,
@@ -170,7 +174,8 @@ rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $1
   echo
   echo "Contact sets of about 2000 nodes (1500 to 2500 here) and below 5e5 dofs: changing step <= 3x a"
   echo "plain step, free flight <= 1.2x, setup <= 3x a factorization, memory <= 2x; the 3D block of"
-  echo "about 1e6 dofs: changing step <= 5x, setup <= 5x, memory <= 2x."
+  echo "about 1e6 dofs: changing step <= 5x, setup <= 5x, memory <= 2x. Each case with both mass"
+  echo "treatments: the paper's NBM (mass on the contact nodes), then the massless boundary."
   echo
   awk -F, "$rows_awk"'
     NR > 1 { k = $2 FS $3 FS $4; t[$1, k, $5] = $8; setup_of_sweep(); m[$1, k, $5] = $9
@@ -188,11 +193,17 @@ rows_awk='function setup_of_sweep() { if ($1 == "ScaleNbmNewmarkStepSweep" && $1
         big = dofs[k] + 0 >= 5e5
         if (!big && (c < 1500 || c > 2500)) continue
         name = sprintf("%s P%s, %s dofs, %d contact nodes", body[f[1] + 1], f[2], dofs[k], c)
-        pn = plain["ScalePlainNewmarkStep", k]
+        pn = plain["ScalePlainNewmarkStep", k]; pf = plain["ScalePlainFactorization", k]
+        pmem = pm["ScalePlainNewmarkStep", k]
+        # The paper NBM (mass on the contact nodes), then the massless boundary.
         row(name ", changing step / plain", t["ScaleNbmNewmarkStepSweep", k, p], pn, big ? 5 : 3)
         if (!big) row(name ", free flight / plain", t["ScaleNbmNewmarkStepFreeFlight", k, p], pn, 1.2)
-        row(name ", setup / factorization", t["ScaleNbmSetup", k, p], plain["ScalePlainFactorization", k], big ? 5 : 3)
-        row(name ", memory / plain", m["ScaleNbmNewmarkStepSweep", k, p], pm["ScalePlainNewmarkStep", k], 2)
+        row(name ", setup / factorization", t["ScaleNbmSetup", k, p], pf, big ? 5 : 3)
+        row(name ", memory / plain", m["ScaleNbmNewmarkStepSweep", k, p], pmem, 2)
+        row(name ", massless boundary: changing step / plain", t["ScaleNbmMasslessStepSweep", k, p], pn, big ? 5 : 3)
+        if (!big) row(name ", massless boundary: free flight / plain", t["ScaleNbmMasslessStepFreeFlight", k, p], pn, 1.2)
+        row(name ", massless boundary: setup / factorization", t["ScaleNbmMasslessSetup", k, p], pf, big ? 5 : 3)
+        row(name ", massless boundary: memory / plain", m["ScaleNbmMasslessStepSweep", k, p], pmem, 2)
         listed++
       }
       if (!listed) print "(No case of this run is in those ranges.)"
