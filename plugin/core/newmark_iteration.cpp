@@ -34,4 +34,8 @@ SparseMatrix NewmarkIteration::contact_columns(Matrix* compliance) const {
   return S_->forward(problem_.constraint_basis().rightCols(problem_.n_contact()), compliance);
 }
 
+Matrix NewmarkIteration::contact_compliance() const {
+  return S_->gram(problem_.constraint_basis().rightCols(problem_.n_contact()));
+}
+
 }  // namespace nbm

@@ -48,12 +48,8 @@ class NewmarkIteration {
   /// *compliance = E_C' S^-1 E_C = Y_E' Y_E: the columns of the unit rows of
   /// the contact dofs (supernodal_forward.hpp).
   SparseMatrix contact_columns(Matrix* compliance) const;
-  /// E_C' S^-1 E_C alone.
-  Matrix contact_compliance() const {
-    Matrix W;
-    contact_columns(&W);
-    return W;
-  }
+  /// E_C' S^-1 E_C alone (Y_E is never held whole).
+  Matrix contact_compliance() const;
 
  private:
   const ContactProblem& problem_;
