@@ -1,10 +1,11 @@
 // Dense Cholesky factors of the contact blocks (the Schur complements of the
-// constrained solves, the LCP's dense principal blocks), computed in place
-// by LAPACK's dpotrf: the LAPACK of the BLAS CHOLMOD loads (OpenBLAS, with
-// its threads; scripts/install-deps.sh). Measured on a 2000 x 2000 SPD
-// matrix on this project's 2-core machine: 36 ms, 1.3 times faster than
-// Eigen's blocked LLT through the same BLAS (bench/why-scale.md), and no
-// copy of the matrix beside its factor (1.1 GB each at 1e4 contact nodes).
+// constrained solves, the LCP's dense principal blocks), computed in place:
+// no copy of the matrix beside its factor (1.1 GB each at 1e4 contact
+// nodes). Large ones by LAPACK's dpotrf, the LAPACK of the BLAS CHOLMOD
+// loads (OpenBLAS, with its threads; scripts/install-deps.sh): on a
+// 2000 x 2000 SPD matrix on this project's 2-core machine 36 ms, 1.3 times
+// faster than Eigen's blocked LLT through the same BLAS; small ones by
+// Eigen's, which does not pay for LAPACK's call (dense_cholesky.cpp).
 #pragma once
 
 #include <cstddef>

@@ -21,10 +21,14 @@
 // contact forces solves once more for S^-1 E_C lambda. A step in free
 // flight is then the plain step, one with contact two; with Y every step
 // costs a substitution pair plus the two products with Y (about
-// 2 nnz(Y) / nnz(L) of a pair). Y is kept when nnz(Y) <= nnz(L) / 8: so
-// unless contact forces act in more than an eighth of the steps, the choice
-// costs at most what it saves, and it saves Y's memory (3.4 GB on the 3D
-// block of 1e6 dofs, where L holds 15 GB).
+// 2 nnz(Y) / nnz(L) of a pair, and more in time: the products are sparse,
+// the substitutions BLAS kernels on dense blocks). Y is kept when
+// nnz(Y) <= nnz(L) / 8, or when it is small enough (2^18 entries) for its
+// products to run from the cache. Measured on the 3D block with 2178
+// contact nodes (nnz(Y) = nnz(L) / 3), without Y: free flight 1.14 plain
+// steps instead of 2.6, a step of the sweeping contact front 2.6 instead of
+// 3.8 (bench/why-scale.md); and Y's memory is saved (3.4 GB on the 3D block
+// of 1e6 dofs, where L holds 15 GB).
 //
 // Damping (method.md §9): the contact dofs carry no damping of their own
 // either (C_user's rows and columns of the contact dofs must vanish; a_M M

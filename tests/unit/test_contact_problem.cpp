@@ -174,7 +174,7 @@ TEST(NodalBoundary, ProjectImposesTheConstraintRows) {
 // ---------------------------------------------------- ConstrainedSolver
 
 TEST(ConstrainedSolver, MatchesADenseKktSolve) {
-  // X x = r + G' mu, G x = h, solved densely: [X G'; G 0] [x; -mu] = [r; h].
+  // X x = r + G' mu, G x = h, against the dense KKT system.
   PlateProblem pp;
   const auto& P = *pp.problem;
   const double beta_dt2 = 0.25 * 1e-4;
@@ -186,16 +186,9 @@ TEST(ConstrainedSolver, MatchesADenseKktSolve) {
   for (int trial = 0; trial < 6; ++trial) {
     nbm::ActiveSet set(nc);
     for (auto&& s : set) s = rng() % 2;
-    Mat G(nc, n);
-    for (Index k = 0; k < nc; ++k) G.row(k) = B.col(set[k] ? nc + k : k).transpose();
-    Mat KKT = Mat::Zero(n + nc, n + nc);
-    KKT.topLeftCorner(n, n) = Mat(X);
-    KKT.topRightCorner(n, nc) = G.transpose();
-    KKT.bottomLeftCorner(nc, n) = G;
+    const Mat G = nbm_test::constraint_rows(B, set);
     const Vec r = nbm_test::random_vector(n, rng), h = nbm_test::random_vector(nc, rng);
-    Vec rhs(n + nc);
-    rhs << r, h;
-    const Vec ref = KKT.fullPivLu().solve(rhs).head(n);
+    const Vec ref = nbm_test::kkt_solution(Mat(X), B, set, r, h);
     Vec x;
     cs.solve(set, r, h, x);
     EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-10 * ref.cwiseAbs().maxCoeff());
@@ -230,16 +223,9 @@ TEST(ConstrainedSolver, LumpedMassMatchesADenseKktSolve) {
   sets.push_back(nbm::ActiveSet(nc, true));
   sets.push_back(sets[1]);
   for (const nbm::ActiveSet& set : sets) {
-    Mat G(nc, n);
-    for (Index k = 0; k < nc; ++k) G.row(k) = B.col(set[k] ? nc + k : k).transpose();
-    Mat KKT = Mat::Zero(n + nc, n + nc);
-    KKT.topLeftCorner(n, n) = Mat(m.asDiagonal());
-    KKT.topRightCorner(n, nc) = G.transpose();
-    KKT.bottomLeftCorner(nc, n) = G;
+    const Mat G = nbm_test::constraint_rows(B, set);
     const Vec r = nbm_test::random_vector(n, rng), h = nbm_test::random_vector(nc, rng);
-    Vec rhs(n + nc);
-    rhs << r, h;
-    const Vec ref = KKT.fullPivLu().solve(rhs).head(n);
+    const Vec ref = nbm_test::kkt_solution(Mat(m.asDiagonal()), B, set, r, h);
     Vec x;
     cs.solve(set, r, h, x);
     EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-10 * ref.cwiseAbs().maxCoeff());

@@ -177,22 +177,6 @@ TEST(DenseKernels, SupernodalForwardMatchesDenseSubstitutions) {
   EXPECT_EQ(inverse->gram(B), W);
 }
 
-// x of X x = r + G^T mu, G x = h (dense KKT system), the rows of G being
-// the columns of B chosen per node (open: k, closed: n_c + k).
-Vec kkt_solution(const Mat& X, const Mat& Bd, const nbm::ActiveSet& active, const Vec& r,
-                 const Vec& h) {
-  const Index n = X.rows(), nc = Bd.cols() / 2;
-  Mat G(nc, n);
-  for (Index k = 0; k < nc; ++k) G.row(k) = Bd.col(active[k] ? nc + k : k).transpose();
-  Mat kkt = Mat::Zero(n + nc, n + nc);
-  kkt.topLeftCorner(n, n) = X;
-  kkt.topRightCorner(n, nc) = -G.transpose();
-  kkt.bottomLeftCorner(nc, n) = G;
-  Vec rhs(n + nc);
-  rhs << r, h;
-  return kkt.fullPivLu().solve(rhs).head(n);
-}
-
 // A random constraint basis: sparse "stiffness" columns, unit columns.
 Mat random_basis(Index n, Index nc, std::mt19937& rng) {
   Mat Bd = Mat::Zero(n, 2 * nc);
@@ -237,7 +221,7 @@ TEST(DenseKernels, ConstrainedSolverOnSweepingSetsMatchesDenseKkt) {
   for (const auto& set : sets) {
     const Vec r = nbm_test::random_vector(static_cast<int>(n), rng);
     const Vec h = nbm_test::random_vector(static_cast<int>(nc), rng);
-    const Vec x_ref = kkt_solution(X, Bd, set, r, h);
+    const Vec x_ref = nbm_test::kkt_solution(X, Bd, set, r, h);
     Vec x;
     solver.solve(set, r, h, x);
     EXPECT_LE((x - x_ref).cwiseAbs().maxCoeff(), 1e-9 * x_ref.cwiseAbs().maxCoeff());
@@ -262,7 +246,7 @@ TEST(DenseKernels, OneSetConstrainedSolveMatchesDenseKkt) {
   for (const nbm::ActiveSet& active :
        {nbm::ActiveSet(nc, false), nbm::ActiveSet(nc, true),
         nbm::ActiveSet{true, false, false, true, true, false}}) {
-    const Vec x_ref = kkt_solution(X, Bd, active, r, h);
+    const Vec x_ref = nbm_test::kkt_solution(X, Bd, active, r, h);
     Vec x;
     nbm::solve_constrained_once(*inverse, B, active, r, h, x);
     EXPECT_LE((x - x_ref).cwiseAbs().maxCoeff(), 1e-10 * x_ref.cwiseAbs().maxCoeff());
@@ -446,9 +430,10 @@ TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
 }
 
 TEST(DenseKernels, DenseCholeskySolvesAsADenseSolveAndReportsBadMatrices) {
-  // LAPACK's in-place factor against a dense solve, at sizes on both sides
-  // of its blocking, with a garbage upper triangle (only the lower one is
-  // read); an indefinite matrix and a non-finite entry are reported.
+  // The in-place factor against a dense solve, at sizes on both sides of
+  // the switch from Eigen's factorization to LAPACK's, with a garbage upper
+  // triangle (only the lower one is read); an indefinite matrix and a
+  // non-finite entry are reported by both.
   std::mt19937 rng(24);
   for (const int n : {1, 7, 130, 600}) {
     const Mat A = nbm_test::random_spd(n, 1e6, rng);
@@ -463,12 +448,14 @@ TEST(DenseKernels, DenseCholeskySolvesAsADenseSolveAndReportsBadMatrices) {
     EXPECT_LE((A * X - B).cwiseAbs().maxCoeff(), 1e-8 * A.cwiseAbs().maxCoeff() * X.cwiseAbs().maxCoeff()) << n;
     EXPECT_LE((X - A.llt().solve(B)).norm(), 1e-8 * X.norm()) << n;
   }
-  Mat indefinite = nbm_test::random_spd(50, 10, rng);
-  indefinite(20, 20) = -100;
-  EXPECT_FALSE(nbm::DenseCholesky(Mat(indefinite)).positive_definite());
-  Mat not_finite = nbm_test::random_spd(50, 10, rng);
-  not_finite(30, 10) = std::nan("");
-  EXPECT_FALSE(nbm::DenseCholesky(std::move(not_finite)).positive_definite());
+  for (const int n : {50, 200}) {  // Eigen's factorization, LAPACK's
+    Mat indefinite = nbm_test::random_spd(n, 10, rng);
+    indefinite(20, 20) = -100;
+    EXPECT_FALSE(nbm::DenseCholesky(std::move(indefinite)).positive_definite()) << n;
+    Mat not_finite = nbm_test::random_spd(n, 10, rng);
+    not_finite(30, 10) = std::nan("");
+    EXPECT_FALSE(nbm::DenseCholesky(std::move(not_finite)).positive_definite()) << n;
+  }
   EXPECT_TRUE(nbm::DenseCholesky(Mat(0, 0)).positive_definite());  // empty: nothing to fail
   EXPECT_EQ(nbm::DenseCholesky(Mat(0, 0)).size(), 0);
 }

@@ -46,6 +46,30 @@ inline Vec random_vector(int n, std::mt19937& rng, double scale = 1.0) {
   return v;
 }
 
+/// The rows of the constraint matrix G of an active set: per node k, column
+/// k of B (open) or column n_c + k (closed), B = [B_open B_closed].
+inline Mat constraint_rows(const Mat& B, const std::vector<bool>& closed) {
+  const Eigen::Index nc = B.cols() / 2;
+  Mat G(nc, B.rows());
+  for (Eigen::Index k = 0; k < nc; ++k) G.row(k) = B.col(closed[k] ? nc + k : k).transpose();
+  return G;
+}
+
+/// x of X x = r + G^T mu, G x = h, G = constraint_rows(B, closed), from the
+/// dense KKT system [X -G^T; G 0] [x; mu] = [r; h].
+inline Vec kkt_solution(const Mat& X, const Mat& B, const std::vector<bool>& closed,
+                        const Vec& r, const Vec& h) {
+  const Eigen::Index n = X.rows(), nc = B.cols() / 2;
+  const Mat G = constraint_rows(B, closed);
+  Mat kkt = Mat::Zero(n + nc, n + nc);
+  kkt.topLeftCorner(n, n) = X;
+  kkt.topRightCorner(n, nc) = -G.transpose();
+  kkt.bottomLeftCorner(nc, n) = G;
+  Vec rhs(n + nc);
+  rhs << r, h;
+  return kkt.fullPivLu().solve(rhs).head(n);
+}
+
 /// Brute-force LCP: enumerates all 2^n complementary bases (free set F with
 /// z_F = -A_FF^{-1} q_F, z elsewhere 0) in extended precision and returns the
 /// z of the basis with the smallest sign violation (for a P-matrix exactly one
