@@ -35,7 +35,6 @@
 #include <string>
 #include <tuple>
 
-#include "block.hpp"
 #include "central_difference_stepper.hpp"
 #include "contact_problem.hpp"
 #include "contact_region.hpp"
@@ -43,7 +42,7 @@
 #include "massless_newmark_stepper.hpp"
 #include "measure.hpp"
 #include "newmark_stepper.hpp"
-#include "plate.hpp"
+#include "scale_case.hpp"
 
 namespace {
 
@@ -57,35 +56,17 @@ using nbm_bench::ContactRegion;
 constexpr double kBounceGap = 1e-3, kBounceWindow = 0.05, kImplicitDt = 2e-4;
 constexpr int kWindowSteps = 250;
 constexpr double kFreeGap = 1e6;  // never reached: free flight
-// Sweeping runs: the body falls at kSweepSpeed onto an obstacle inclined so
-// that the contact front crosses the contact set in kSweepSteps steps (the
-// first column touches during the first timed step); memory is read after them.
-constexpr int kSweepSteps = 20;
-constexpr double kSweepSpeed = 0.1;
-
-// An assembled body: its matrices and the coordinates of its dofs.
-struct Case {
-  nbm_bench::Assembled a;
-  Eigen::MatrixXd X;  ///< n_dofs x dim
-};
-
-enum Body { kPlate = 0, kStrip = 1, kBlock = 2 };
+// Sweeping runs (scale_case.hpp): memory is read after their kSweepSteps steps.
+using nbm_bench::Case;
+using nbm_bench::kBlock;
+using nbm_bench::kPlate;
+using nbm_bench::kStrip;
+using nbm_bench::kSweepSteps;
 
 const Case& body_case(int body, int order, int dofs) {
   static std::map<std::tuple<int, int, int>, std::unique_ptr<Case>> cache;
   auto& c = cache[{body, order, dofs}];
-  if (!c) {
-    c = std::make_unique<Case>();
-    if (body == kBlock) {
-      const auto b = nbm_bench::Block::with_dofs(order, dofs);
-      c->a = nbm_bench::assemble(b);
-      c->X = nbm_bench::dof_positions(b);
-    } else {
-      const auto p = nbm_bench::Plate::with_dofs(order, dofs, body == kStrip ? 80 : 2);
-      c->a = nbm_bench::assemble(p);
-      c->X = nbm_bench::dof_positions(p);
-    }
-  }
+  if (!c) c = std::make_unique<Case>(nbm_bench::assemble_body(body, order, dofs));
   return *c;
 }
 
@@ -107,14 +88,9 @@ const Case& scale_case(const benchmark::State& state) {
   return c;
 }
 
-// The contact set of a scale benchmark: contact_pct % of the bottom face, or
-// (200) the bottom and top faces.
+// The contact set of a scale benchmark (scale_case.hpp).
 ContactRegion scale_region(const benchmark::State& state) {
-  ContactRegion r;
-  const int pct = static_cast<int>(state.range(3));
-  r.fraction = pct >= 100 ? 1 : pct / 100.0;
-  r.top = pct == 200;
-  return r;
+  return nbm_bench::scale_region(static_cast<int>(state.range(3)));
 }
 
 /// The contact problem of `region`; with the massless boundary if `massless`.
@@ -133,21 +109,6 @@ void report(benchmark::State& state, const Case& c, long contacts) {
   state.counters["held_MB"] = nbm_bench::heap_mb() - heap_after_assembly;
 }
 
-// A sweep: the gaps grow along the contact set so that the body, falling at
-// kSweepSpeed, reaches its end after kSweepSteps steps of `dt`.
-ContactRegion sweeping(ContactRegion r, const Case& c, double dt) {
-  r.gap = 0.5 * kSweepSpeed * dt;
-  r.slope = kSweepSpeed * kSweepSteps * dt / nbm_bench::sweep_length(c.X, r);
-  return r;
-}
-
-// The initial velocity of a sweep: kSweepSpeed downwards.
-Vector falling(const Case& c) {
-  const Index dim = c.X.cols();
-  Vector v = Vector::Zero(c.X.rows());
-  for (Index d = dim - 1; d < v.size(); d += dim) v(d) = -kSweepSpeed;
-  return v;
-}
 
 // Whether the row-sum lumped mass is positive (not for P2 tetrahedra: the
 // rows of their vertices sum to negative masses), which the explicit schemes
@@ -158,10 +119,7 @@ bool has_explicit_scheme(benchmark::State& state, const Case& c) {
   return false;
 }
 
-// Half the critical step of central differences with the row-sum lumped mass.
-double explicit_dt(const nbm::SparseMatrix& K, const Vector& m) {
-  return 0.5 * 2 / std::sqrt(nbm::max_eigenvalue(K, m));
-}
+using nbm_bench::explicit_dt;
 
 // ------------------------------------------------------------ plain schemes
 
@@ -219,7 +177,7 @@ void plain_factorization(benchmark::State& state, const Case& c) {
 // A sweep: the penetrating set grows at every step. kappa: 1e3 max K_ii.
 void penalty_sweep_step(benchmark::State& state, const Case& c, const ContactRegion& region) {
   const double dt = kImplicitDt, bdt2 = 0.25 * dt * dt;
-  const nbm::ContactDescription d = nbm_bench::contact_on(c.X, sweeping(region, c, dt));
+  const nbm::ContactDescription d = nbm_bench::contact_on(c.X, nbm_bench::sweeping(region, c.X, dt));
   const Index n = c.a.K.rows(), dim = c.X.cols(), nc = static_cast<Index>(d.gaps.size());
   const double kappa = 1e3 * c.a.K.diagonal().maxCoeff();
   nbm::SparseMatrix S = c.a.M + bdt2 * c.a.K;
@@ -237,7 +195,7 @@ void penalty_sweep_step(benchmark::State& state, const Case& c, const ContactReg
   llt.compute(S);
   state.counters["penalty_factor_us"] =
       std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count();
-  Vector u = Vector::Zero(n), v = falling(c), a = Vector::Zero(n);
+  Vector u = Vector::Zero(n), v = nbm_bench::falling(c.X), a = Vector::Zero(n);
   Vector u_pred(n), r(n), a_new(n);
   std::vector<char> active(nc, 0), next(nc);
   long refactorizations = 0;
@@ -320,8 +278,8 @@ void nbm_steps(benchmark::State& state, const Case& c, ContactRegion region, Mot
     window = kBounceWindow;
   }
   if (motion == Motion::kSweep) {
-    region = sweeping(region, c, dt);
-    v0 = falling(c);
+    region = nbm_bench::sweeping(region, c.X, dt);
+    v0 = nbm_bench::falling(c.X);
   }
   // The setup (what BM_NbmSetup times) is reported too: where one process per
   // benchmark is all a size allows (the 3D block of 1e6 dofs), the sweep gives it.

@@ -29,6 +29,7 @@
 #include "contact_problem.hpp"
 #include "newmark_stepper.hpp"
 #include "plate.hpp"
+#include "trajectory.hpp"
 
 namespace {
 
@@ -90,61 +91,6 @@ double plain_step_seconds(const nbm::CholeskyInverse& S, const nbm_bench::Assemb
   return (cpu_seconds() - start) / steps;
 }
 
-// Writes the state after each step to a new trajectory file, or compares it
-// with the one recorded there (the largest difference relative to the
-// recorded vector's largest entry, over the steps and u, v, a).
-class Trajectory {
- public:
-  explicit Trajectory(const char* path) {
-    if (path == nullptr) return;
-    file_ = std::fopen(path, "rb");
-    comparing_ = file_ != nullptr;
-    if (!comparing_) file_ = std::fopen(path, "wb");
-    if (file_ == nullptr) {
-      std::fprintf(stderr, "cannot open %s\n", path);
-      std::exit(2);
-    }
-  }
-  ~Trajectory() {
-    if (file_ != nullptr) std::fclose(file_);
-  }
-  void record(const Vector& u, const Vector& v, const Vector& a) {
-    if (file_ == nullptr) return;
-    ++step_;
-    for (const Vector* x : {&u, &v, &a}) {
-      if (!comparing_) {
-        std::fwrite(x->data(), sizeof(double), static_cast<std::size_t>(x->size()), file_);
-        continue;
-      }
-      recorded_.resize(x->size());
-      if (std::fread(recorded_.data(), sizeof(double), static_cast<std::size_t>(x->size()),
-                     file_) != static_cast<std::size_t>(x->size())) {
-        std::fprintf(stderr, "the trajectory file is shorter than this run\n");
-        std::exit(2);
-      }
-      const double scale = std::max(recorded_.cwiseAbs().maxCoeff(), 1e-300);
-      Index at = 0;
-      const double difference = (*x - recorded_).cwiseAbs().maxCoeff(&at) / scale;
-      if (difference > largest_) {
-        largest_ = difference;
-        where_ = "in " + std::string(x == &u ? "u" : x == &v ? "v" : "a") + " at step " +
-                 std::to_string(step_) + ", dof " + std::to_string(at);
-      }
-    }
-  }
-  bool comparing() const { return comparing_; }
-  double largest_difference() const { return largest_; }
-  const std::string& where() const { return where_; }
-
- private:
-  std::FILE* file_ = nullptr;
-  bool comparing_ = false;
-  Vector recorded_;
-  double largest_ = 0;
-  int step_ = 0;
-  std::string where_;
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -193,7 +139,7 @@ int main(int argc, char** argv) {
   start = cpu_seconds();
   stepper.initialize(zero, falling, F);
   const double initialize = cpu_seconds() - start;
-  Trajectory trajectory(argc == 6 ? argv[5] : nullptr);
+  nbm_bench::Trajectory trajectory(argc == 6 ? argv[5] : nullptr);
   double changing = 0;
   int changes = 0, solves = 0;
   for (int s = 0; s < steps; ++s) {

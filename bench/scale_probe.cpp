@@ -1,0 +1,177 @@
+// One case of issue 14's scale benchmarks (bench/bench_step.cpp, BM_Scale*)
+// in one process, phase by phase, for the figures of bench/why-scale.md that
+// the benchmarks do not print: the setup and initialize() apart, the time of
+// every step of the sweep, and trajectories compared between versions of the
+// core (bench/trajectory.hpp).
+//   nbm_scale_probe BODY ORDER DOFS PCT SCHEME [STEPS [TRAJECTORY]] [--free] [--no-plain]
+// BODY 0 plate, 1 strip, 2 block; PCT as BM_Scale* (6 ... 100, 200: two
+// faces); SCHEME newmark (mass on the contact nodes), massless or explicit;
+// STEPS of the sweep (default 20, the benchmarks'); --free: the obstacle out
+// of reach (free flight); --no-plain: no plain factorization and step (the
+// ratios are then not printed; the 1e6-dof block cannot hold both).
+// Wall-clock times (OpenBLAS's threads work for both sides).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "central_difference_stepper.hpp"
+#include "contact_problem.hpp"
+#include "massless_newmark_stepper.hpp"
+#include "measure.hpp"
+#include "newmark_stepper.hpp"
+#include "scale_case.hpp"
+#include "trajectory.hpp"
+
+namespace {
+
+using nbm::Index;
+using nbm::Vector;
+
+constexpr double kImplicitDt = 2e-4, kFreeGap = 1e6;
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A plain contact-free step, what the benchmarks' ratios divide by: one
+// product with M and one solve with M + dt^2/4 K (implicit), or one product
+// with K (explicit); the time of the factorization too.
+double plain_step_seconds(const nbm_bench::Case& c, bool explicit_scheme, double dt,
+                          double* factorization) {
+  const Index n = c.a.K.rows();
+  Vector u = Vector::Zero(n), v = Vector::Zero(n), r(n);
+  const int steps = 10;
+  if (explicit_scheme) {
+    const Vector m = c.a.M * Vector::Ones(n);
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) {
+      r.noalias() = c.a.F - c.a.K * u;
+      v += dt * r.cwiseQuotient(m);
+      u += dt * v;
+    }
+    return seconds_since(start) / steps;
+  }
+  const double bdt2 = 0.25 * dt * dt;
+  auto start = std::chrono::steady_clock::now();
+  const auto S = nbm::make_cholesky_inverse(c.a.M + bdt2 * c.a.K, "S");
+  *factorization = seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) {
+    r.noalias() = c.a.M * (u + dt * v);
+    r += bdt2 * c.a.F;
+    S->solve_in_place(r);
+    v = (r - u) / dt;
+    u.swap(r);
+  }
+  return seconds_since(start) / steps;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<const char*> args;
+  bool free_flight = false, plain = true;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--free") == 0)
+      free_flight = true;
+    else if (std::strcmp(argv[i], "--no-plain") == 0)
+      plain = false;
+    else
+      args.push_back(argv[i]);
+  }
+  if (args.size() < 5 || args.size() > 7) {
+    std::fprintf(stderr,
+                 "usage: %s BODY ORDER DOFS PCT newmark|massless|explicit [STEPS [TRAJECTORY]] "
+                 "[--free] [--no-plain]\n",
+                 argv[0]);
+    return 2;
+  }
+  const int body = std::atoi(args[0]), order = std::atoi(args[1]), pct = std::atoi(args[3]);
+  const std::string scheme = args[4];
+  const int steps = args.size() > 5 ? std::atoi(args[5]) : nbm_bench::kSweepSteps;
+  if (scheme != "newmark" && scheme != "massless" && scheme != "explicit") {
+    std::fprintf(stderr, "scheme: %s, expected newmark, massless or explicit\n", scheme.c_str());
+    return 2;
+  }
+  const bool explicit_scheme = scheme == "explicit";
+  const nbm_bench::Case c = nbm_bench::assemble_body(body, order, std::atof(args[2]));
+  const double dt = explicit_scheme
+                        ? nbm_bench::explicit_dt(c.a.K, c.a.M * Vector::Ones(c.a.M.rows()))
+                        : kImplicitDt;
+  double factorization = 0, plain_step = 0;
+  if (plain) plain_step = plain_step_seconds(c, explicit_scheme, dt, &factorization);
+
+  nbm_bench::ContactRegion region = nbm_bench::sweeping(nbm_bench::scale_region(pct), c.X, dt);
+  if (free_flight) region.gap = kFreeGap;
+  const nbm::ContactDescription d = nbm_bench::contact_on(c.X, region);
+  const double heap = nbm_bench::heap_mb();
+  auto start = std::chrono::steady_clock::now();
+  const nbm::ContactProblem problem(
+      c.a.M, c.a.K,
+      nbm::ContactSet(c.a.K.rows(), {d.dofs.begin(), d.dofs.end()}, d.normals,
+                      Eigen::Map<const Vector>(d.gaps.data(), static_cast<Index>(d.gaps.size()))),
+      {}, scheme == "massless" ? &c.X : nullptr);
+  std::unique_ptr<nbm::Stepper> stepper;
+  if (scheme == "newmark")
+    stepper = std::make_unique<nbm::NewmarkStepper>(problem, dt);
+  else if (scheme == "massless")
+    stepper = std::make_unique<nbm::MasslessNewmarkStepper>(problem, dt);
+  else
+    stepper = std::make_unique<nbm::CentralDifferenceStepper>(problem, dt);
+  const double setup = seconds_since(start);
+
+  const Vector F = problem.to_internal(c.a.F), zero = Vector::Zero(problem.size());
+  start = std::chrono::steady_clock::now();
+  stepper->initialize(zero, problem.to_internal(nbm_bench::falling(c.X)), F);
+  const double initialize = seconds_since(start);
+
+  nbm_bench::Trajectory trajectory(args.size() > 6 ? args[6] : nullptr);
+  std::vector<double> times;
+  double all = 0, changing = 0;
+  int changes = 0, solves = 0;
+  for (int s = 0; s < steps; ++s) {
+    const nbm::ActiveSet before = stepper->active();
+    start = std::chrono::steady_clock::now();
+    solves += stepper->step(F).active_set_iterations;
+    const double t = seconds_since(start);
+    times.push_back(t);
+    all += t;
+    if (stepper->active() != before) {
+      changing += t;
+      ++changes;
+    }
+    trajectory.record(stepper->u(), stepper->v(), stepper->a());
+  }
+  const double held = nbm_bench::heap_mb() - heap;
+
+  std::printf("dofs %ld, contact nodes %ld, scheme %s%s, dt %.3g\n",
+              static_cast<long>(c.a.K.rows()), static_cast<long>(problem.n_contact()),
+              scheme.c_str(), free_flight ? " (free flight)" : "", dt);
+  if (plain)
+    std::printf("plain: %s %.4g s%s\n", explicit_scheme ? "explicit step" : "step", plain_step,
+                explicit_scheme ? "" : (", factorization " + std::to_string(factorization) + " s").c_str());
+  std::printf("setup %.4g s%s, initialize %.4g s, heap held %.1f MB\n", setup,
+              plain && !explicit_scheme
+                  ? (" (" + std::to_string(setup / factorization) + " factorizations)").c_str()
+                  : "",
+              initialize, held);
+  std::printf("mean step %.4g s (%.2f plain), %d of %d steps change the set (mean %.4g s, "
+              "%.2f plain), %.2f solves per step\n",
+              all / steps, plain ? all / steps / plain_step : 0.0, changes, steps,
+              changes > 0 ? changing / changes : 0.0,
+              plain && changes > 0 ? changing / changes / plain_step : 0.0,
+              static_cast<double>(solves) / steps);
+  std::printf("step times (ms):");
+  for (double t : times) std::printf(" %.1f", 1e3 * t);
+  std::printf("\n|u| + |v| + |a| after %d steps: %.17g\n", steps,
+              stepper->u().norm() + stepper->v().norm() + stepper->a().norm());
+  if (trajectory.comparing())
+    std::printf("largest difference from the recorded trajectory, relative: %.3g (%s)\n",
+                trajectory.largest_difference(), trajectory.where().c_str());
+  return 0;
+}
