@@ -121,7 +121,7 @@ double pivot(const PrincipalBlocks& A, const Vector& q, double a_max, LcpResult&
       solve_principal(*A_FF, q, F, work, r.z);
     }
     r.w = q;
-    A.add_product(r.z, r.w);
+    A.add_columns_product(F, r.z, r.w);  // z = 0 off F
     for (Index i : F) r.w(i) = 0.0;  // exact on the free set by construction
     if (!r.z.allFinite() || !r.w.allFinite())  // finite data, overflowing solution
       throw NumericalError("LCP: the solution overflows; the data are too badly scaled");

@@ -35,6 +35,16 @@ void PrincipalBlocks::add_product(const Vector& x, Vector& y) const {
     y.noalias() += A_ * x;
 }
 
+void PrincipalBlocks::add_columns_product(const std::vector<Index>& F, const Vector& x,
+                                          Vector& y) const {
+  if (sparse_) {
+    for (Index j : F)
+      for (SparseMatrix::InnerIterator it(A_sparse_, j); it; ++it) y(it.row()) += it.value() * x(j);
+  } else {
+    for (Index j : F) y.noalias() += x(j) * A_.col(j);
+  }
+}
+
 PrincipalBlockFactor::PrincipalBlockFactor(const PrincipalBlocks& A, const std::vector<Index>& F) {
   const Index m = static_cast<Index>(F.size());
   work_.resize(m);

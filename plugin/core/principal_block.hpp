@@ -38,6 +38,10 @@ class PrincipalBlocks {
   double max_abs() const;
   /// y += A x, at the cost of A's nonzeros when it is sparse; no allocation.
   void add_product(const Vector& x, Vector& y) const;
+  /// y += A[:, F] x_F, for an x that is zero outside F (the LCP's z off its
+  /// free set): the cost of those columns only, so that a step with every
+  /// contact open reads none of a dense A; no allocation.
+  void add_columns_product(const std::vector<Index>& F, const Vector& x, Vector& y) const;
 
   static constexpr Index kSparseFraction = 8;
 

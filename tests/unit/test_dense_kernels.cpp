@@ -371,7 +371,8 @@ TEST(DenseKernels, OrderingForConstrainedSolvesShortensContactColumnsOfALongStri
 TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
   // Sparse factors (fill-reducing order) of principal blocks of a sparse
   // matrix, and dense ones of a dense matrix, against dense solves of the
-  // blocks, on random free sets (all rows, none, every other, random).
+  // blocks, on random free sets (all rows, none, every other, random); the
+  // products with A and with its columns in a free set against dense ones.
   std::mt19937 rng(23);
   const Index n = 60;
   const Mat sparse = sparse_spd(n, rng), dense = nbm_test::random_spd(n, 1e4, rng);
@@ -401,6 +402,14 @@ TEST(DenseKernels, PrincipalBlockFactorsSolveAsDenseSolves) {
       std::vector<Index> F;
       for (Index i = 0; i < n; ++i)
         if (trial == 0 || (trial == 2 && i % 2 == 0) || (trial > 2 && coin(rng))) F.push_back(i);
+      // y += A[:, F] x_F against the dense product with x zeroed off F.
+      Vec x_F = Vec::Zero(n);
+      for (Index i : F) x_F(i) = x(i);
+      Vec y_F = y;
+      const Vec y_F_ref = y + A * x_F;
+      blocks->add_columns_product(F, x_F, y_F);
+      EXPECT_LE((y_F - y_F_ref).cwiseAbs().maxCoeff(), 1e-12 * y_F_ref.cwiseAbs().maxCoeff())
+          << "trial " << trial;
       const nbm::PrincipalBlockFactor factor(*blocks, F);
       ASSERT_TRUE(factor.positive_definite());
       const Index m = static_cast<Index>(F.size());
