@@ -42,6 +42,7 @@
 #include "massless_newmark_stepper.hpp"
 #include "measure.hpp"
 #include "newmark_stepper.hpp"
+#include "plain_step.hpp"
 #include "scale_case.hpp"
 
 namespace {
@@ -123,40 +124,24 @@ using nbm_bench::explicit_dt;
 
 // ------------------------------------------------------------ plain schemes
 
-// Contact-free average-acceleration Newmark: one solve with M + dt^2/4 K.
+// The plain steps (plain_step.hpp), what every ratio divides by.
 void plain_newmark_step(benchmark::State& state, const Case& c) {
-  const double dt = kImplicitDt, bdt2 = 0.25 * dt * dt;
-  const auto S = nbm::make_cholesky_inverse(c.a.M + bdt2 * c.a.K, "S");
-  const Index n = c.a.K.rows();
-  Vector u = Vector::Zero(n), v = Vector::Zero(n), a = Vector::Zero(n), r(n), u_pred(n), a_new(n);
+  const auto S = nbm::make_cholesky_inverse(c.a.M + (0.25 * kImplicitDt * kImplicitDt) * c.a.K, "S");
+  nbm_bench::PlainNewmark plain(*S, c.a, kImplicitDt);
   for (auto _ : state) {
-    u_pred = u + dt * v + bdt2 * a;
-    r.noalias() = c.a.M * u_pred;
-    r += bdt2 * c.a.F;
-    S->solve_in_place(r);
-    a_new = (r - u_pred) / bdt2;
-    v += (0.5 * dt) * (a + a_new);
-    a.swap(a_new);
-    u.swap(r);
-    benchmark::DoNotOptimize(u.data());
+    plain.step();
+    benchmark::DoNotOptimize(plain.u().data());
   }
   report(state, c, 0);
 }
 
-// Contact-free central differences with the row-sum lumped mass.
 void plain_explicit_step(benchmark::State& state, const Case& c) {
   if (!has_explicit_scheme(state, c)) return;
   const Vector m = c.a.M * Vector::Ones(c.a.M.rows());
-  const double dt = explicit_dt(c.a.K, m);
-  const Index n = c.a.K.rows();
-  Vector u = Vector::Zero(n), v = Vector::Zero(n), a = c.a.F.cwiseQuotient(m), a_new(n);
+  nbm_bench::PlainCentralDifference plain(c.a, m, explicit_dt(c.a.K, m));
   for (auto _ : state) {
-    u += dt * v + (0.5 * dt * dt) * a;
-    a_new.noalias() = c.a.F - c.a.K * u;
-    a_new.array() /= m.array();
-    v += (0.5 * dt) * (a + a_new);
-    a.swap(a_new);
-    benchmark::DoNotOptimize(u.data());
+    plain.step();
+    benchmark::DoNotOptimize(plain.u().data());
   }
   report(state, c, 0);
 }

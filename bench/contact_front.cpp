@@ -28,6 +28,7 @@
 
 #include "contact_problem.hpp"
 #include "newmark_stepper.hpp"
+#include "plain_step.hpp"
 #include "plate.hpp"
 #include "trajectory.hpp"
 
@@ -70,24 +71,12 @@ nbm::ContactSet contact_edges(const nbm_bench::Plate& p, int edges, Index dofs) 
                          Eigen::Map<const Vector>(gaps.data(), static_cast<Index>(gaps.size())));
 }
 
-// Mean CPU time of a contact-free average-acceleration Newmark step.
+// Mean CPU time of the plain step (plain_step.hpp).
 double plain_step_seconds(const nbm::CholeskyInverse& S, const nbm_bench::Assembled& a) {
-  const double bdt2 = 0.25 * kDt * kDt;
-  const Index n = a.K.rows();
-  Vector u = Vector::Zero(n), v = Vector::Zero(n), acc = Vector::Zero(n), r(n), u_pred(n),
-         acc_new(n);
+  nbm_bench::PlainNewmark plain(S, a, kDt);
   const int steps = 50;
   const double start = cpu_seconds();
-  for (int s = 0; s < steps; ++s) {
-    u_pred = u + kDt * v + bdt2 * acc;
-    r.noalias() = a.M * u_pred;
-    r += bdt2 * a.F;
-    S.solve_in_place(r);
-    acc_new = (r - u_pred) / bdt2;
-    v += (0.5 * kDt) * (acc + acc_new);
-    acc.swap(acc_new);
-    u.swap(r);
-  }
+  for (int s = 0; s < steps; ++s) plain.step();
   return (cpu_seconds() - start) / steps;
 }
 

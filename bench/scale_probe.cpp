@@ -24,6 +24,7 @@
 #include "massless_newmark_stepper.hpp"
 #include "measure.hpp"
 #include "newmark_stepper.hpp"
+#include "plain_step.hpp"
 #include "scale_case.hpp"
 #include "trajectory.hpp"
 
@@ -38,36 +39,23 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-// A plain contact-free step, what the benchmarks' ratios divide by: one
-// product with M and one solve with M + dt^2/4 K (implicit), or one product
-// with K (explicit); the time of the factorization too.
+// The plain step (plain_step.hpp), what the benchmarks' ratios divide by,
+// and (implicit) the time of the factorization.
 double plain_step_seconds(const nbm_bench::Case& c, bool explicit_scheme, double dt,
                           double* factorization) {
-  const Index n = c.a.K.rows();
-  Vector u = Vector::Zero(n), v = Vector::Zero(n), r(n);
   const int steps = 10;
   if (explicit_scheme) {
-    const Vector m = c.a.M * Vector::Ones(n);
+    nbm_bench::PlainCentralDifference plain(c.a, c.a.M * Vector::Ones(c.a.M.rows()), dt);
     const auto start = std::chrono::steady_clock::now();
-    for (int s = 0; s < steps; ++s) {
-      r.noalias() = c.a.F - c.a.K * u;
-      v += dt * r.cwiseQuotient(m);
-      u += dt * v;
-    }
+    for (int s = 0; s < steps; ++s) plain.step();
     return seconds_since(start) / steps;
   }
-  const double bdt2 = 0.25 * dt * dt;
   auto start = std::chrono::steady_clock::now();
-  const auto S = nbm::make_cholesky_inverse(c.a.M + bdt2 * c.a.K, "S");
+  const auto S = nbm::make_cholesky_inverse(c.a.M + (0.25 * dt * dt) * c.a.K, "S");
   *factorization = seconds_since(start);
+  nbm_bench::PlainNewmark plain(*S, c.a, dt);
   start = std::chrono::steady_clock::now();
-  for (int s = 0; s < steps; ++s) {
-    r.noalias() = c.a.M * (u + dt * v);
-    r += bdt2 * c.a.F;
-    S->solve_in_place(r);
-    v = (r - u) / dt;
-    u.swap(r);
-  }
+  for (int s = 0; s < steps; ++s) plain.step();
   return seconds_since(start) / steps;
 }
 

@@ -25,9 +25,9 @@
 // the substitutions BLAS kernels on dense blocks). Y is kept when
 // nnz(Y) <= nnz(L) / 8, or when it is small enough (2^18 entries) for its
 // products to run from the cache. Measured on the 3D block with 2178
-// contact nodes (nnz(Y) = nnz(L) / 3), without Y: free flight 1.14 plain
-// steps instead of 2.6, a step of the sweeping contact front 2.6 instead of
-// 3.8 (bench/why-scale.md); and Y's memory is saved (3.4 GB on the 3D block
+// contact nodes (nnz(Y) = nnz(L) / 3), without Y: free flight 1.13 plain
+// steps instead of 2.6, a step of the sweeping contact front 2.6 to 3.3
+// instead of 3.8 (bench/why-scale.md); and Y's memory is saved (3.4 GB on the 3D block
 // of 1e6 dofs, where L holds 15 GB).
 //
 // Damping (method.md §9): the contact dofs carry no damping of their own
