@@ -18,6 +18,13 @@ std::string node_str(Index k) { return "contact node " + std::to_string(k); }
 // column-major in h (dim x dim). Its first column is n; the others span the
 // tangent space.
 void householder_basis(const double* n, int dim, double* h) {
+  bool first_axis = n[0] == 1.0;
+  for (int i = 1; i < dim; ++i) first_axis = first_axis && n[i] == 0.0;
+  if (first_axis) {  // the user's axes themselves (ContactSet::in_user_axes)
+    for (int j = 0; j < dim; ++j)
+      for (int i = 0; i < dim; ++i) h[j * dim + i] = i == j ? 1.0 : 0.0;
+    return;
+  }
   // w = n - e_1, H = I - 2 w w^T / (w.w); when n is (close to) e_1, w.w
   // is small and H would be ill-defined: reflect with n + e_1 and flip signs.
   std::vector<double> w(n, n + dim);
@@ -84,6 +91,17 @@ ContactSet::ContactSet(Index n_dofs, std::vector<Index> dofs, std::vector<double
     if (!std::isfinite(gaps_(k)))
       throw InputError("gaps: non-finite gap at " + node_str(k));
   }
+}
+
+ContactSet ContactSet::in_user_axes(Index n_dofs, std::vector<Index> dofs, int dim,
+                                    const std::vector<Index>& fixed) {
+  if (dim < 1 || dim > 3 || dofs.size() % dim != 0)
+    throw InputError("contact dofs: " + std::to_string(dofs.size()) + " entries with " +
+                     std::to_string(dim) + " dofs per node, expected a multiple of 1, 2 or 3");
+  const Index n_nodes = static_cast<Index>(dofs.size()) / dim;
+  std::vector<double> normals(dofs.size(), 0.0);
+  for (Index k = 0; k < n_nodes; ++k) normals[k * dim] = 1.0;
+  return ContactSet(n_dofs, std::move(dofs), std::move(normals), Vector::Zero(n_nodes), fixed);
 }
 
 SparseMatrix ContactSet::rotation(Index n_dofs) const {

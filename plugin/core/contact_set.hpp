@@ -24,6 +24,12 @@ class ContactSet {
   ContactSet(Index n_dofs, std::vector<Index> dofs, std::vector<double> normals,
              Vector gaps, const std::vector<Index>& fixed = {});
 
+  /// Contact nodes kept in the user's axes (normal e_1, gap 0, rotation the
+  /// identity): for a contact frame that follows the body
+  /// (following_frame_stepper.hpp), whose normals live outside the set.
+  static ContactSet in_user_axes(Index n_dofs, std::vector<Index> dofs, int dim,
+                                 const std::vector<Index>& fixed = {});
+
   Index size() const { return gaps_.size(); }
   int dim() const { return dim_; }
   const Vector& gaps() const { return gaps_; }

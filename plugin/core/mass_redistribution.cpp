@@ -37,7 +37,11 @@ bool affine_weights(const Matrix& X, const Vector& x0, Vector& w) {
 }  // namespace
 
 SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatrix& M_user,
-                                const Matrix& positions) {
+                                const Matrix& positions, MasslessPart part) {
+  const bool all_components = part == MasslessPart::kAllComponents;
+  if (all_components && !problem.exact_round_trip())
+    throw InputError("mass redistribution of every component of the contact nodes needs "
+                     "contact nodes in the user's axes (no rotation)");
   const Index n_user = problem.n_dofs();
   if (M_user.rows() != n_user || M_user.cols() != n_user)
     throw InputError("M: size " + std::to_string(M_user.rows()) + ", expected " +
@@ -58,7 +62,10 @@ SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatri
   // Rows of Pi: identity except the contact dofs' rows (built below).
   const Index n = problem.size();
   std::vector<char> is_contact(n, 0);
-  for (Index c : problem.contact_index()) is_contact[c] = 1;
+  for (Index k = 0; k < contacts.size(); ++k)
+    for (int j = 0; j < (all_components ? contacts.dim() : 1); ++j)
+      is_contact[all_components ? problem.internal_index(contacts.dof(k, j))
+                                : problem.contact_index()[k]] = 1;
   std::vector<Triplet> pi;
   for (Index i = 0; i < n; ++i)
     if (!is_contact[i]) pi.emplace_back(i, i, 1.0);
@@ -98,10 +105,12 @@ SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatri
         throw NumericalError("mass redistribution: the interior dofs near contact node " +
                              std::to_string(k) +
                              " do not determine affine weights (too few or aligned nodes)");
-      const double n_kj = contacts.normal(k, j);
+      // Row of the replaced displacement: u_kj itself, or u_n(k) which sums
+      // the components' rows weighted by the normal.
+      const Index row = all_components ? problem.internal_index(d0) : problem.contact_index()[k];
+      const double weight = all_components ? 1.0 : contacts.normal(k, j);
       for (std::size_t c = 0; c < candidates.size(); ++c)
-        pi.emplace_back(problem.contact_index()[k], problem.internal_index(candidates[c]),
-                        n_kj * w(c));
+        pi.emplace_back(row, problem.internal_index(candidates[c]), weight * w(c));
     }
   }
   SparseMatrix Pi(n, n);

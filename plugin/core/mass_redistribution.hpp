@@ -5,7 +5,8 @@
 // conserved through impacts.
 //
 // Construction: M' = Pi^T M Pi, where Pi replaces the normal displacement of
-// every contact node by a weighted combination of interior dofs,
+// every contact node (or every component of it, MasslessPart) by a weighted
+// combination of interior dofs,
 //     u_n(k) = sum_j n_kj u_kj  ~  sum_j n_kj sum_d w_{kj,d} u_d,
 // d running over the interior dofs of the same component near dof kj (its
 // neighbours in the graph of M, widened ring by ring until the weights are
@@ -22,6 +23,16 @@
 
 namespace nbm {
 
+/// Which displacements of a contact node lose their mass.
+enum class MasslessPart {
+  kNormal,  ///< the normal one, u_n (the contact dof): the massless boundary
+  /// every component: a node whose normal may change (the contact frame
+  /// following the body, following_frame_stepper.hpp) keeps no mass in any
+  /// direction, so that M' does not depend on the normals. The problem's
+  /// contact nodes must not be rotated (ContactProblem::exact_round_trip).
+  kAllComponents,
+};
+
 /// M' in internal coordinates. M_user: the user's mass matrix (its graph
 /// must not couple two components of a contact node, as vector mass
 /// matrices rho u.w do not); positions: one row per user dof, the
@@ -29,6 +40,7 @@ namespace nbm {
 /// positions or a mass coupling components, NumericalError if the interior
 /// neighbours of a contact dof do not determine affine weights.
 SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatrix& M_user,
-                                const Matrix& positions);
+                                const Matrix& positions,
+                                MasslessPart part = MasslessPart::kNormal);
 
 }  // namespace nbm

@@ -9,10 +9,12 @@
 #include "contact_problem.hpp"
 #include "damping.hpp"
 #include "errors.hpp"
+#include "following_frame_stepper.hpp"
 #include "mass_redistribution.hpp"
 #include "massless_newmark_stepper.hpp"
 #include "moreau_jean_stepper.hpp"
 #include "newmark_stepper.hpp"
+#include "obstacle/rigid_obstacle.hpp"
 #include "sparse_input.hpp"
 
 namespace nbm {
@@ -45,6 +47,9 @@ void check_options(const SolverOptions& options) {
   if (options.restitution.has_value() && scheme != "moreau-jean")
     throw InputError("restitution: given with scheme \"" + scheme +
                      "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
+  if (options.obstacle && (options.mass != "redistributed" || scheme != "newmark"))
+    throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
+                     "contact frame follows the body only with massless contact nodes)");
   if (options.mass == "redistributed") {
     if (scheme != "newmark")
       throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
@@ -56,6 +61,47 @@ void check_options(const SolverOptions& options) {
     throw InputError("positions: given with mass = \"consistent\"; they are used only by "
                      "mass = \"redistributed\"");
   }
+}
+
+TimeLaw time_law(const TimeLawDescription& d, const std::string& who) {
+  if (d.harmonics.size() % 3 != 0)
+    throw InputError(who + ": " + std::to_string(d.harmonics.size()) +
+                     " harmonic coefficients, expected triples (omega, cos, sin)");
+  TimeLaw law;
+  law.offset = d.offset, law.rate = d.rate, law.accel = d.accel;
+  for (std::size_t j = 0; j < d.harmonics.size(); j += 3)
+    law.harmonics.push_back({d.harmonics[j], d.harmonics[j + 1], d.harmonics[j + 2]});
+  return law;
+}
+
+Vector vector_of(const std::vector<double>& x) { return Eigen::Map<const Vector>(x.data(), x.size()); }
+
+// The core's obstacle for the option `obstacle` (method.md §10).
+std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d) {
+  Side side = Side::kOutside;
+  if (d.side == "inside")
+    side = Side::kInside;
+  else if (d.side != "outside")
+    throw InputError("obstacle side: \"" + d.side + "\", expected \"outside\" or \"inside\"");
+  const TimeLaw move = time_law(d.translation, "obstacle translation");
+  const TimeLaw grow = time_law(d.radius_change, "obstacle radius change");
+  if (d.kind == "plane") {
+    if (!grow.constant() || grow.offset != 0)
+      throw InputError("obstacle radius change: given for a plane, which has no radius");
+    return make_plane(vector_of(d.point), vector_of(d.axis), move);
+  }
+  if (d.kind == "circle" || d.kind == "sphere") {
+    const std::size_t dim = d.kind == "circle" ? 2 : 3;
+    if (d.point.size() != dim)
+      throw InputError("obstacle point: " + std::to_string(d.point.size()) + " coordinates, a " +
+                       d.kind + " expects " + std::to_string(dim));
+    return make_ball(vector_of(d.point), d.radius, side, vector_of(d.direction), move, grow);
+  }
+  if (d.kind == "cylinder")
+    return make_cylinder(vector_of(d.point), vector_of(d.axis), d.radius, side,
+                         vector_of(d.direction), move, grow);
+  throw InputError("obstacle kind: \"" + d.kind +
+                   "\", expected \"plane\", \"circle\", \"sphere\" or \"cylinder\"");
 }
 
 // The node coordinates of mass = "redistributed", one row per dof.
@@ -129,6 +175,10 @@ struct Solver::Impl {
     ContactSet contacts(n, to_index(contact.dofs), contact.normals,
                         Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()),
                         fixed_dofs);
+    if (options.obstacle) {
+      build_following(M, K, contacts);
+      return;
+    }
     std::unique_ptr<ContactProblem> p;
     if (options.mass == "redistributed") {
       const Matrix X = positions_of(options, n);
@@ -140,6 +190,32 @@ struct Solver::Impl {
     if (damping.has_matrix()) damping.C_user = p->to_internal(damping_user.C_user);
     std::unique_ptr<Stepper> s = make_stepper(options, *p, damping, critical_dt);
     stepper = std::move(s);  // the old stepper refers to the old problem: first
+    problem = std::move(p);
+    obstacle = Obstacle::at_rest(problem->gaps());
+  }
+
+  /// The contact nodes of `contacts` (checked as given) in the user's axes,
+  /// with the option `obstacle` followed by the contact frame (method.md §10).
+  void build_following(const SparseMatrix& M, const SparseMatrix& K, const ContactSet& contacts) {
+    const Index n = K.rows();
+    const std::vector<Index> fixed_dofs(fixed.begin(), fixed.end());
+    std::vector<Index> dofs;
+    for (Index k = 0; k < contacts.size(); ++k)
+      for (int j = 0; j < contacts.dim(); ++j) dofs.push_back(contacts.dof(k, j));
+    auto p = std::make_unique<ContactProblem>(
+        M, K, ContactSet::in_user_axes(n, std::move(dofs), contacts.dim(), fixed_dofs), fixed_dofs);
+    const Matrix X = positions_of(options, n);
+    if (X.cols() != contacts.dim())
+      throw InputError("positions: " + std::to_string(X.cols()) + " coordinates per dof, expected " +
+                       std::to_string(contacts.dim()) + " (the dofs per contact node)");
+    FollowingFrameOptions frame;
+    const NewmarkParameters defaults;
+    frame.beta = options.beta.value_or(defaults.beta);
+    frame.gamma = options.gamma.value_or(defaults.gamma);
+    std::unique_ptr<Stepper> s = std::make_unique<FollowingFrameStepper>(
+        *p, M, X, make_obstacle(*options.obstacle), options.dt, frame, damping_user);
+    critical_dt = 0;
+    stepper = std::move(s);
     problem = std::move(p);
     obstacle = Obstacle::at_rest(problem->gaps());
   }
@@ -218,6 +294,17 @@ struct Solver::Impl {
   }
 };
 
+void check_obstacle(const ObstacleDescription& obstacle) { make_obstacle(obstacle); }
+
+double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
+                         double t) {
+  const auto o = make_obstacle(obstacle);
+  if (static_cast<int>(x.size()) != o->dim())
+    throw InputError("x: " + std::to_string(x.size()) + " coordinates, expected " +
+                     std::to_string(o->dim()) + " (the obstacle's dimension)");
+  return o->at(x.data(), t).phi;
+}
+
 Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
                const SolverOptions& options)
     : impl_(std::make_unique<Impl>()) {
@@ -260,6 +347,9 @@ double Solver::critical_dt() const { return impl_->critical_dt; }
 
 void Solver::set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
                           const std::vector<double>& g_accel) {
+  if (impl_->options.obstacle)
+    throw InputError("obstacle: given as the option obstacle=, which moves by its own law; gaps "
+                     "along fixed normals do not apply");
   const long nc = n_contact();
   Obstacle o;
   for (const auto& [x, y, name] : {std::tuple{&g, &o.g, "gaps"}, {&g_rate, &o.g_rate, "gap rates"},

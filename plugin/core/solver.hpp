@@ -21,6 +21,44 @@ struct CooMatrix {
   bool lower_half = false;
 };
 
+/// A function of time, w(t) = offset + rate t + accel t^2 / 2
+/// + sum_j (c_j cos(omega_j t) + s_j sin(omega_j t)); `harmonics` holds the
+/// triples (omega_j, c_j, s_j).
+struct TimeLawDescription {
+  double offset = 0, rate = 0, accel = 0;
+  std::vector<double> harmonics;
+};
+
+/// A rigid obstacle held exactly: each step enforces phi(x + u, t) >= 0 at
+/// every contact node with the normal taken where the node is (method.md
+/// §10). Needs mass "redistributed" (every component of the contact nodes
+/// massless) and scheme "newmark".
+struct ObstacleDescription {
+  /// "plane", "circle" (2D), "sphere" (3D) or "cylinder" (3D).
+  std::string kind;
+  /// A point of the plane, the centre, or a point of the cylinder's axis.
+  std::vector<double> point;
+  /// The plane's normal (out of the obstacle, towards the body), or the
+  /// cylinder's axis; normalised.
+  std::vector<double> axis;
+  double radius = 0;  ///< circle, sphere, cylinder
+  /// "outside" (the body outside the round obstacle) or "inside" (a casing).
+  std::string side = "outside";
+  /// Motion: a translation by translation(t) along `direction` (for a plane:
+  /// along its normal, `direction` not used), and for round obstacles a
+  /// change of radius radius_change(t).
+  std::vector<double> direction;
+  TimeLawDescription translation, radius_change;
+};
+
+/// Throws InputError naming the field if `obstacle` does not describe an
+/// obstacle (unknown kind or side, wrong sizes, zero axis, non-finite or
+/// negative radius, malformed time laws).
+void check_obstacle(const ObstacleDescription& obstacle);
+/// phi(x, t) of the obstacle: the signed distance of the point x at time t.
+double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
+                         double t);
+
 struct SolverOptions {
   double dt = 0;
   /// "newmark" (implicit NBM), "explicit" (central differences NBM) or
@@ -53,6 +91,11 @@ struct SolverOptions {
   /// couple the contact dofs.
   double rayleigh_mass = 0, rayleigh_stiffness = 0;
   CooMatrix damping;
+  /// The obstacle held exactly with a contact frame that follows the body
+  /// (method.md §10); the contact description then gives only the contact
+  /// nodes (its normals and gaps are checked but not used: the obstacle
+  /// replaces them).
+  std::optional<ObstacleDescription> obstacle;
 };
 
 /// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components
@@ -90,6 +133,7 @@ class Solver {
   /// that call reaches. It stays until set again; before any call, the
   /// construction's gaps at rest. Throws InputError on wrong sizes or
   /// non-finite entries.
+  /// Throws InputError with the option `obstacle`, which moves by its own law.
   void set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
                     const std::vector<double>& g_accel);
   /// First and second time derivatives of the load (size n_dofs) at the time

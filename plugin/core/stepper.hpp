@@ -124,8 +124,9 @@ class Stepper {
     return lambda;
   }
   virtual void reactions(Vector& lambda) const = 0;
-  /// g - u_n per contact node, against the current obstacle.
-  Vector gaps() const { return gaps(u_, obstacle_.g); }
+  /// g - u_n per contact node, against the current obstacle (a scheme whose
+  /// contact frame follows the body: the true distance phi(x + u)).
+  virtual Vector gaps() const { return gaps(u_, obstacle_.g); }
   Energies energies() const;
   /// The damping matrix C in internal coordinates (method.md §9); 0 x 0
   /// without damping.
@@ -155,6 +156,9 @@ class Stepper {
   Vector gaps(const Vector& u, const Vector& g) const;
   /// Throws InputError if u penetrates the obstacle at gaps g beyond round-off.
   void check_penetration(const Vector& u, const Vector& g, const char* what) const;
+  /// Adds to the obstacle's work a scheme that accounts for it itself (a
+  /// contact frame that follows the body, whose obstacle is not a gap vector).
+  void add_obstacle_work(double work) { obstacle_work_ += work; }
 
   const ContactProblem& problem_;
   double dt_;

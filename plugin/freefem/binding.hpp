@@ -35,6 +35,17 @@ struct NbmHandle {
   }
 };
 
+// The script-side obstacle (NBMObstacle O(kind, point, ...)): a description
+// the NBM constructor's obstacle= hands to the core (method.md §10).
+struct ObstacleHandle {
+  nbm::ObstacleDescription* description;
+  void init() { description = nullptr; }
+  void destroy() {
+    delete description;
+    init();
+  }
+};
+
 [[noreturn]] inline void fail(const std::string& what) { ExecError("nbm: " + what); throw 0; }
 
 // Runs f, turning core exceptions into ExecError with their message.
@@ -92,5 +103,7 @@ void assign(KN<K>* x, const std::vector<T>& v) {
 void load_orbit_functions();
 /// Registers nbmBackbone (backbone_functions.cpp).
 void load_backbone_functions();
+/// Registers the NBMObstacle type (obstacle_functions.cpp).
+void load_obstacle_functions();
 
 }  // namespace nbm_binding

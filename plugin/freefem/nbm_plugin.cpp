@@ -17,6 +17,9 @@
 //   nbmRestart(S, u, v, F, t, a, act [, state]); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 6 entries, e[5] dissipated
+//   NBMObstacle bowl("circle", c, radius = R, side = "inside");   // obstacle_functions.cpp
+//   NBM F(M, K, cdofs, normals, gaps, dt = 1e-3, mass = "redistributed",
+//         positions = xy, obstacle = bowl);  // held exactly, frame following the body
 //
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
@@ -30,7 +33,7 @@ namespace {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 11;
+  static const int n_name_param = 12;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -57,6 +60,11 @@ class NbmConstruct : public E_F0mps {
     if (nargs[9]) opt.rayleigh_stiffness = GetAny<double>((*nargs[9])(s));
     if (nargs[10])
       opt.damping = coo_of(GetAny<Matrice_Creuse<double>*>((*nargs[10])(s)), "damping");
+    if (nargs[11]) {
+      const ObstacleHandle* o = GetAny<ObstacleHandle*>((*nargs[11])(s));
+      if (!o || !o->description) fail("NBM: obstacle: the NBMObstacle was not constructed");
+      opt.obstacle = *o->description;
+    }
     nbm::ContactDescription contact;
     contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
     contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
@@ -85,6 +93,7 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"rayleighM", &typeid(double)},
     {"rayleighK", &typeid(double)},
     {"damping", &typeid(Matrice_Creuse<double>*)},
+    {"obstacle", &typeid(ObstacleHandle*)},
 };
 
 class NbmConstructOp : public OneOperator {
@@ -254,6 +263,7 @@ long nbm_fallbacks(NbmHandle* const& h) { return solver_of(h, "nbmFallbacks").fa
 long nbm_n_contact(NbmHandle* const& h) { return solver_of(h, "nbmContactNodes").n_contact(); }
 
 void Load_Init() {
+  load_obstacle_functions();  // NBMObstacle, which NBM's obstacle= takes
   Dcl_Type<NbmHandle*>(InitP<NbmHandle>, Destroy<NbmHandle>);
   zzzfff->Add("NBM", atype<NbmHandle*>());
   TheOperators->Add("<-", new NbmConstructOp);

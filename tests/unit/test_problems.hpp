@@ -3,6 +3,7 @@
 // plus their contact boundaries. All quantities are in user coordinates.
 #pragma once
 
+#include <array>
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
 #include <cmath>
@@ -87,25 +88,28 @@ struct Plate {
   }
 };
 
-inline Assembled assemble(const Plate& p) {
-  const int n = p.n_dofs();
-  const double lam = p.E * p.nu / ((1 + p.nu) * (1 - 2 * p.nu));
-  const double mu = p.E / (2 * (1 + p.nu));
+/// P1 plane-strain elasticity on triangles (counter-clockwise node lists):
+/// consistent mass, stiffness and the load of gravity g along the unit
+/// vector gdir. Node i has dofs 2 i, 2 i + 1.
+inline Assembled assemble_triangles(const std::vector<Eigen::Vector2d>& x,
+                                    const std::vector<std::array<int, 3>>& triangles, double rho,
+                                    double E, double nu, double g, const Eigen::Vector2d& gdir) {
+  const int n = 2 * static_cast<int>(x.size());
+  const double lam = E * nu / ((1 + nu) * (1 - 2 * nu));
+  const double mu = E / (2 * (1 + nu));
   Eigen::Matrix3d D;
   D << lam + 2 * mu, lam, 0, lam, lam + 2 * mu, 0, 0, 0, mu;
-  const Eigen::Vector2d gdir = p.normal();
   std::vector<Trip> m, k;
   Assembled a;
   a.F = Eigen::VectorXd::Zero(n);
-  auto triangle = [&](int ia, int ja, int ib, int jb, int ic, int jc) {
-    const int nodes[3] = {p.node(ia, ja), p.node(ib, jb), p.node(ic, jc)};
-    const Eigen::Vector2d x[3] = {p.position(ia, ja), p.position(ib, jb), p.position(ic, jc)};
-    const double area =
-        0.5 * ((x[1] - x[0]).x() * (x[2] - x[0]).y() - (x[2] - x[0]).x() * (x[1] - x[0]).y());
+  for (const auto& nodes : triangles) {
+    const Eigen::Vector2d xe[3] = {x[nodes[0]], x[nodes[1]], x[nodes[2]]};
+    const double area = 0.5 * ((xe[1] - xe[0]).x() * (xe[2] - xe[0]).y() -
+                               (xe[2] - xe[0]).x() * (xe[1] - xe[0]).y());
     Eigen::Matrix<double, 3, 6> B = Eigen::Matrix<double, 3, 6>::Zero();
     for (int i = 0; i < 3; ++i) {
-      const Eigen::Vector2d& xj = x[(i + 1) % 3];
-      const Eigen::Vector2d& xk = x[(i + 2) % 3];
+      const Eigen::Vector2d& xj = xe[(i + 1) % 3];
+      const Eigen::Vector2d& xk = xe[(i + 2) % 3];
       const double bi = (xj.y() - xk.y()) / (2 * area), ci = (xk.x() - xj.x()) / (2 * area);
       B(0, 2 * i) = bi;
       B(1, 2 * i + 1) = ci;
@@ -115,26 +119,36 @@ inline Assembled assemble(const Plate& p) {
     const Eigen::Matrix<double, 6, 6> Ke = area * B.transpose() * D * B;
     for (int i = 0; i < 3; ++i) {
       for (int c = 0; c < 2; ++c) {
-        a.F(2 * nodes[i] + c) += p.rho * p.g * area / 3 * gdir(c);
+        a.F(2 * nodes[i] + c) += rho * g * area / 3 * gdir(c);
         for (int j = 0; j < 3; ++j) {
-          m.emplace_back(2 * nodes[i] + c, 2 * nodes[j] + c, p.rho * area / 12 * (i == j ? 2 : 1));
+          m.emplace_back(2 * nodes[i] + c, 2 * nodes[j] + c, rho * area / 12 * (i == j ? 2 : 1));
           for (int d = 0; d < 2; ++d)
             k.emplace_back(2 * nodes[i] + c, 2 * nodes[j] + d, Ke(2 * i + c, 2 * j + d));
         }
       }
     }
-  };
-  for (int j = 0; j < p.ny; ++j)
-    for (int i = 0; i < p.nx; ++i) {
-      triangle(i, j, i + 1, j, i + 1, j + 1);
-      triangle(i, j, i + 1, j + 1, i, j + 1);
-    }
+    a.mass += rho * area;
+  }
   a.M.resize(n, n);
   a.K.resize(n, n);
   a.M.setFromTriplets(m.begin(), m.end());
   a.K.setFromTriplets(k.begin(), k.end());
   // Symmetric to the last bit (the element matrices are, up to round-off).
   a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
+  return a;
+}
+
+inline Assembled assemble(const Plate& p) {
+  std::vector<Eigen::Vector2d> x(p.n_nodes());
+  for (int j = 0; j <= p.ny; ++j)
+    for (int i = 0; i <= p.nx; ++i) x[p.node(i, j)] = p.position(i, j);
+  std::vector<std::array<int, 3>> triangles;
+  for (int j = 0; j < p.ny; ++j)
+    for (int i = 0; i < p.nx; ++i) {
+      triangles.push_back({p.node(i, j), p.node(i + 1, j), p.node(i + 1, j + 1)});
+      triangles.push_back({p.node(i, j), p.node(i + 1, j + 1), p.node(i, j + 1)});
+    }
+  Assembled a = assemble_triangles(x, triangles, p.rho, p.E, p.nu, p.g, p.normal());
   a.mass = p.rho * p.W * p.H;
   return a;
 }

@@ -1,0 +1,347 @@
+#include "following_frame_stepper.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "errors.hpp"
+#include "lcp.hpp"
+#include "mass_redistribution.hpp"
+#include "mass_solve.hpp"
+#include "newmark_iteration.hpp"
+
+namespace nbm {
+namespace {
+
+void check_options(const FollowingFrameOptions& o, const Damping& damping) {
+  check_newmark_parameters(o.beta, o.gamma);
+  if (!(o.frame_tolerance > 0 && o.frame_tolerance < 1e-3))
+    throw InputError("frame tolerance: " + std::to_string(o.frame_tolerance) +
+                     ", expected a value in (0, 1e-3)");
+  if (o.max_frame_iterations < 1)
+    throw InputError("frame iterations: " + std::to_string(o.max_frame_iterations) +
+                     ", expected at least 1");
+  if (damping.has_matrix())
+    throw InputError("damping matrix: a contact frame that follows the body takes Rayleigh "
+                     "damping only (rayleighM, rayleighK)");
+}
+
+}  // namespace
+
+FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
+                                             const SparseMatrix& M_user, const Matrix& positions,
+                                             std::shared_ptr<const RigidObstacle> obstacle,
+                                             double dt, const FollowingFrameOptions& options,
+                                             const Damping& damping)
+    : Stepper(problem, dt, damping),
+      obstacle_(std::move(obstacle)),
+      options_(options),
+      n_c_(problem.n_contact()),
+      d_(problem.contacts().dim()) {
+  check_options(options_, damping);
+  if (!obstacle_) throw InputError("obstacle: none given");
+  if (obstacle_->dim() != d_)
+    throw InputError("obstacle: dimension " + std::to_string(obstacle_->dim()) +
+                     ", expected " + std::to_string(d_) + " (the contact nodes' dofs)");
+  if (positions.rows() != problem.n_dofs() || positions.cols() != d_)
+    throw InputError("positions: " + std::to_string(positions.rows()) + " x " +
+                     std::to_string(positions.cols()) + ", expected " +
+                     std::to_string(problem.n_dofs()) + " x " + std::to_string(d_) +
+                     " (the coordinates of every dof's node)");
+  // The redistribution rejects a rotated problem (its M' would depend on the
+  // normals).
+  M_ = redistributed_mass(problem, M_user, positions, MasslessPart::kAllComponents);
+  C_ = damping_matrix(damping, M_, problem.K());
+
+  const ContactSet& contacts = problem.contacts();
+  node_dofs_.resize(n_c_ * d_);
+  X_.resize(n_c_, d_);
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) {
+      node_dofs_[k * d_ + j] = problem.internal_index(contacts.dof(k, j));
+      X_(k, j) = positions(contacts.dof(k, j), j);
+    }
+  size_ = (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
+  if (!(size_ > 0)) size_ = 1;
+
+  // S = M' + gamma dt C + beta dt^2 K (method.md §5, §9).
+  SparseMatrix S = M_ + (options_.beta * dt * dt) * problem.K();
+  if (damped()) S += (options_.gamma * dt) * C_;
+  S_ = make_cholesky_inverse(S, "M' + gamma dt C + beta dt^2 K (massless contact nodes)");
+  std::vector<Triplet> e;
+  for (Index i = 0; i < n_c_ * d_; ++i) e.emplace_back(node_dofs_[i], i, 1.0);
+  SparseMatrix E(problem.size(), n_c_ * d_);
+  E.setFromTriplets(e.begin(), e.end());
+  Z_ = S_->gram(E);
+
+  // K_NN, dense, for the start's static relation of the contact nodes.
+  Matrix K_NN(n_c_ * d_, n_c_ * d_);
+  for (Index i = 0; i < n_c_ * d_; ++i)
+    for (Index j = 0; j < n_c_ * d_; ++j)
+      K_NN(i, j) = problem.K().coeff(node_dofs_[i], node_dofs_[j]);
+  const Eigen::LLT<Matrix> llt(K_NN);
+  if (llt.info() != Eigen::Success)
+    throw NumericalError("K: its block of the contact nodes is not positive definite (a "
+                         "contact node moves freely when all others are held)");
+  K_NN_inverse_ = llt.solve(Matrix::Identity(n_c_ * d_, n_c_ * d_));
+  lambda_.setZero(n_c_);
+  normals_.setZero(n_c_, d_);
+  open_guess_.assign(n_c_, true);
+  active_.assign(n_c_, false);
+}
+
+Matrix FollowingFrameStepper::positions_of(const Vector& u) const {
+  Matrix p = X_;
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) p(k, j) += u(node_dofs_[k * d_ + j]);
+  return p;
+}
+
+void FollowingFrameStepper::place_nodes(const Matrix& p, Vector& u) const {
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) u(node_dofs_[k * d_ + j]) = p(k, j) - X_(k, j);
+}
+
+int FollowingFrameStepper::solve_frame(const Matrix& p_free, const Matrix& compliance,
+                                       double scale, double t, Matrix& p) {
+  int iterations = 0;
+  const Index m = n_c_ * d_;
+  Matrix A(n_c_, n_c_), ZN(m, n_c_);
+  Vector q(n_c_);
+  double last_move = std::numeric_limits<double>::infinity();
+  const double tolerance = options_.frame_tolerance * size_;
+  for (int it = 0; it < options_.max_frame_iterations; ++it) {
+    ++iterations;
+    // The obstacle linearised at p: normal n_k, gap h_k (method.md §8, §10).
+    for (Index k = 0; k < n_c_; ++k) {
+      const Vector x = p.row(k).transpose();
+      const ObstaclePoint o = obstacle_->at(x.data(), t);
+      const double g = o.grad.head(d_).norm();
+      if (!(g > 0) || !std::isfinite(o.phi))
+        throw NumericalError("obstacle (" + obstacle_->describe() + "): no normal at contact node " +
+                             std::to_string(k) + " (zero or non-finite gradient)");
+      normals_.row(k) = -o.grad.head(d_).transpose() / g;
+      q(k) = o.phi / g - normals_.row(k).dot(p_free.row(k) - p.row(k));
+    }
+    // Z N and N' Z N with N block diagonal: d^2 n_c^2 work, not (d n_c)^2 n_c.
+    for (Index l = 0; l < n_c_; ++l)
+      ZN.col(l).noalias() = compliance.middleCols(l * d_, d_) * normals_.row(l).transpose();
+    for (Index k = 0; k < n_c_; ++k)
+      A.row(k).noalias() = scale * (normals_.row(k) * ZN.middleRows(k * d_, d_));
+    A = 0.5 * (A + A.transpose()).eval();  // symmetric to the last bit
+    // lcp.active: z = lambda = 0 (open contacts), the warm start of the
+    // next iteration and step.
+    const LcpResult lcp = LcpSolver::solve(A, q, open_guess_);
+    open_guess_ = lcp.active;
+    lambda_ = lcp.z;
+    const Vector shift = scale * (ZN * lambda_);
+    double move = 0;
+    for (Index k = 0; k < n_c_; ++k)
+      for (int j = 0; j < d_; ++j) {
+        const double next = p_free(k, j) - shift(k * d_ + j);
+        move = std::max(move, std::abs(next - p(k, j)));
+        p(k, j) = next;
+      }
+    if (move <= tolerance) return iterations;
+    // Round-off floor: the update stopped shrinking well below the body
+    // size, so the linearisation point is as good as the arithmetic allows.
+    if (it > 1 && move >= last_move && move <= 1e3 * tolerance) return iterations;
+    last_move = move;
+  }
+  throw NumericalError("contact frame: no fixed point of the obstacle's normals in " +
+                       std::to_string(options_.max_frame_iterations) + " iterations at t = " +
+                       std::to_string(t) + " (" + obstacle_->describe() +
+                       "); a smaller dt follows the obstacle more closely");
+}
+
+void FollowingFrameStepper::start(const ContactLoad& load) {
+  // Against the true obstacle: every contact node outside it.
+  const Matrix p0 = positions_of(u_);
+  for (Index k = 0; k < n_c_; ++k) {
+    const Vector x = p0.row(k).transpose();
+    const double phi = obstacle_->at(x.data(), t_).phi;
+    if (phi < -options_.frame_tolerance * size_)
+      throw InputError("u: initial penetration at contact node " + std::to_string(k) +
+                       " (distance " + std::to_string(phi) + " to the " + obstacle_->describe() +
+                       ")");
+  }
+  // u_N from the static relation at u_O: K_NN u_N = (F - K u)_N + K_NN u_N - N lambda.
+  const Vector r = load.F - problem_.K() * u_;
+  Vector free_shift(n_c_ * d_);
+  for (Index i = 0; i < n_c_ * d_; ++i) free_shift(i) = r(node_dofs_[i]);
+  free_shift = K_NN_inverse_ * free_shift;
+  Matrix p = p0, p_free = p0;
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) p_free(k, j) += free_shift(k * d_ + j);
+  std::fill(open_guess_.begin(), open_guess_.end(), true);
+  solve_frame(p_free, K_NN_inverse_, 1.0, t_, p);
+  place_nodes(p, u_);
+  for (Index k = 0; k < n_c_; ++k) active_[k] = lambda_(k) != 0;
+  // a_O = M_OO^-1 (F - K u - C v)_O; the massless nodes' a_N are Newmark's
+  // own (they carry no inertia and do not enter the next step's positions).
+  Vector rhs = load.F - problem_.K() * u_;
+  if (damped()) rhs -= C_ * v_;
+  SparseMatrix M_reg = M_;
+  for (Index i : node_dofs_) {
+    M_reg.coeffRef(i, i) += 1.0;
+    rhs(i) = 0;
+  }
+  a_ = solve_mass(M_reg, rhs, "M' (interior block)");
+  if (!damped()) boundary_rates(t_);
+}
+
+double FollowingFrameStepper::obstacle_power(const Vector& lambda, const Vector& u, double t) const {
+  // -lambda . g'(t), g' = (d phi / dt) / |grad phi| at each node (method.md §8).
+  if (obstacle_->fixed()) return 0;
+  const Matrix p = positions_of(u);
+  double power = 0;
+  for (Index k = 0; k < n_c_; ++k) {
+    if (lambda(k) == 0) continue;
+    const Vector x = p.row(k).transpose();
+    const ObstaclePoint o = obstacle_->at(x.data(), t);
+    power -= lambda(k) * o.phi_t / o.grad.head(d_).norm();
+  }
+  return power;
+}
+
+StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
+  const double dt = dt_, bdt2 = options_.beta * dt * dt;
+  const double t1 = t_ + dt;
+  const double power_before = obstacle_power(lambda_, u_, t_);
+
+  const Vector u_hat = u_ + dt * v_ + (dt * dt * (0.5 - options_.beta)) * a_;
+  const Vector v_pred = v_ + (dt * (1 - options_.gamma)) * a_;
+  Vector a = next.F - problem_.K() * u_hat;
+  if (damped()) a -= C_ * v_pred;
+  S_->solve_in_place(a);  // the free step's acceleration
+  Matrix p_free = positions_of(u_hat);
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) p_free(k, j) += bdt2 * a(node_dofs_[k * d_ + j]);
+  // The frame starts where the nodes are now.
+  Matrix p = positions_of(u_);
+  StepReport report;
+  report.active_set_iterations = solve_frame(p_free, Z_, bdt2, t1, p);
+  if ((lambda_.array() != 0.0).any()) {
+    Vector correction = Vector::Zero(problem_.size());
+    for (Index k = 0; k < n_c_; ++k)
+      for (int j = 0; j < d_; ++j) correction(node_dofs_[k * d_ + j]) = -lambda_(k) * normals_(k, j);
+    S_->solve_in_place(correction);
+    a += correction;
+  }
+  u_ = u_hat + bdt2 * a;
+  v_ = v_pred + (options_.gamma * dt) * a;
+  a_ = std::move(a);
+  // Closed contacts onto the surface: one Newton step along the gradient
+  // removes the solves' round-off (the frame iteration's own error is
+  // already of second order in its last update).
+  for (Index k = 0; k < n_c_; ++k) {
+    active_[k] = lambda_(k) != 0;
+    if (!active_[k]) continue;
+    Vector x(d_);
+    for (int j = 0; j < d_; ++j) x(j) = X_(k, j) + u_(node_dofs_[k * d_ + j]);
+    const ObstaclePoint o = obstacle_->at(x.data(), t1);
+    const double g2 = o.grad.head(d_).squaredNorm();
+    for (int j = 0; j < d_; ++j) u_(node_dofs_[k * d_ + j]) -= o.phi * o.grad(j) / g2;
+  }
+  add_obstacle_work(0.5 * dt * (power_before + obstacle_power(lambda_, u_, t1)));
+  if (!damped()) boundary_rates(t1);
+  return report;
+}
+
+void FollowingFrameStepper::boundary_relation(Vector& x, const Vector& h) const {
+  // Free part: K_NN x_N = -(K_NO x_O), the contact rows with x_N zeroed.
+  Vector y = x;
+  for (Index i : node_dofs_) y(i) = 0;
+  const Vector Ky = problem_.K() * y;
+  Vector r(n_c_ * d_);
+  for (Index i = 0; i < n_c_ * d_; ++i) r(i) = -Ky(node_dofs_[i]);
+  Vector x_N = K_NN_inverse_ * r;
+  // Closed contacts: n_k . x_k = h_k, by a multiplier per closed node.
+  std::vector<Index> closed;
+  for (Index k = 0; k < n_c_; ++k)
+    if (active_[k]) closed.push_back(k);
+  if (!closed.empty()) {
+    const Index m = static_cast<Index>(closed.size());
+    Matrix KN(n_c_ * d_, m);  // K_NN^-1 N_A
+    for (Index c = 0; c < m; ++c)
+      KN.col(c) = K_NN_inverse_.middleCols(closed[c] * d_, d_) * normals_.row(closed[c]).transpose();
+    Matrix G(m, m);
+    Vector b(m);
+    for (Index a = 0; a < m; ++a) {
+      const auto n_a = normals_.row(closed[a]);
+      b(a) = n_a.dot(x_N.segment(closed[a] * d_, d_)) - h(closed[a]);
+      for (Index c = 0; c < m; ++c) G(a, c) = n_a.dot(KN.col(c).segment(closed[a] * d_, d_));
+    }
+    x_N -= KN * G.ldlt().solve(b);
+  }
+  for (Index i = 0; i < n_c_ * d_; ++i) x(node_dofs_[i]) = x_N(i);
+}
+
+void FollowingFrameStepper::boundary_rates(double t) {
+  // d/dt phi(p(t), t) = 0 on a closed contact: n . v = phi_t / |grad phi|;
+  // twice: n . a = (phi_tt + 2 grad phi_t . v + v' H v) / |grad phi|, the
+  // second derivatives by central differences of the obstacle (H v along v).
+  Vector h_v = Vector::Zero(n_c_), h_a = Vector::Zero(n_c_);
+  const Matrix p = positions_of(u_);
+  const double step = 1e-6 * size_;
+  for (Index k = 0; k < n_c_; ++k) {
+    if (!active_[k]) continue;
+    const Vector x = p.row(k).transpose();
+    const ObstaclePoint o = obstacle_->at(x.data(), t);
+    const double g = o.grad.head(d_).norm();
+    normals_.row(k) = -o.grad.head(d_).transpose() / g;
+    h_v(k) = o.phi_t / g;
+  }
+  boundary_relation(v_, h_v);
+  for (Index k = 0; k < n_c_; ++k) {
+    if (!active_[k]) continue;
+    const Vector x = p.row(k).transpose();
+    Vector vk(d_);
+    for (int j = 0; j < d_; ++j) vk(j) = v_(node_dofs_[k * d_ + j]);
+    const double speed = vk.norm();
+    double curvature_term = 0;
+    if (speed > 0) {
+      const Vector e = vk / speed;
+      const Vector xp = x + step * e, xm = x - step * e;
+      const ObstaclePoint op = obstacle_->at(xp.data(), t), om = obstacle_->at(xm.data(), t);
+      // v' H v + 2 grad phi_t . v with grad phi_t . e = (phi_t(x+) - phi_t(x-)) / 2 step.
+      curvature_term = speed * speed * e.dot((op.grad - om.grad).head(d_)) / (2 * step) +
+                       2 * speed * (op.phi_t - om.phi_t) / (2 * step);
+    }
+    double phi_tt = 0;
+    if (!obstacle_->fixed()) {
+      const double tau = 1e-6 * std::max(1.0, std::abs(t));
+      phi_tt = (obstacle_->at(x.data(), t + tau).phi_t - obstacle_->at(x.data(), t - tau).phi_t) /
+               (2 * tau);
+    }
+    const ObstaclePoint o = obstacle_->at(x.data(), t);
+    h_a(k) = (phi_tt + curvature_term) / o.grad.head(d_).norm();
+  }
+  boundary_relation(a_, h_a);
+}
+
+Vector FollowingFrameStepper::gaps() const {
+  const Matrix p = positions_of(u_);
+  Vector phi(n_c_);
+  for (Index k = 0; k < n_c_; ++k) {
+    const Vector x = p.row(k).transpose();
+    phi(k) = obstacle_->at(x.data(), t_).phi;
+  }
+  return phi;
+}
+
+Matrix FollowingFrameStepper::normals() const {
+  const Matrix p = positions_of(u_);
+  Matrix n(n_c_, d_);
+  for (Index k = 0; k < n_c_; ++k) {
+    const Vector x = p.row(k).transpose();
+    const ObstaclePoint o = obstacle_->at(x.data(), t_);
+    n.row(k) = -o.grad.head(d_).transpose() / o.grad.head(d_).norm();
+  }
+  return n;
+}
+
+
+
+}  // namespace nbm

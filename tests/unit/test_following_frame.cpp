@@ -1,0 +1,338 @@
+// The contact frame that follows the body (method.md §10): round bodies on
+// round obstacles held exactly, against the rigid-body motion of the same
+// frictionless problem (curved_problems.hpp), with the energy conserved to
+// the scheme's accuracy and exact restarts.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+#include "contact_problem.hpp"
+#include "curved_problems.hpp"
+#include "errors.hpp"
+#include "following_frame_stepper.hpp"
+#include "obstacle/rigid_obstacle.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+using nbm_test::CurvedBody;
+const double pi = std::acos(-1.0);
+
+// phi, grad phi and phi_t of an obstacle against central differences.
+void expect_consistent(const nbm::RigidObstacle& o, const Eigen::VectorXd& x, double t) {
+  const int d = o.dim();
+  const nbm::ObstaclePoint p = o.at(x.data(), t);
+  const double h = 1e-6;
+  for (int i = 0; i < d; ++i) {
+    Eigen::VectorXd xp = x, xm = x;
+    xp(i) += h, xm(i) -= h;
+    EXPECT_NEAR(p.grad(i), (o.at(xp.data(), t).phi - o.at(xm.data(), t).phi) / (2 * h), 1e-8)
+        << o.describe() << ", component " << i;
+  }
+  EXPECT_NEAR(p.phi_t, (o.at(x.data(), t + h).phi - o.at(x.data(), t - h).phi) / (2 * h), 1e-7)
+      << o.describe();
+  EXPECT_NEAR(p.grad.head(d).norm(), 1.0, 1e-14) << "a signed distance: " << o.describe();
+}
+
+TEST(RigidObstacle, SignedDistancesOfEveryKind) {
+  nbm::TimeLaw law;
+  law.offset = 0.1, law.rate = 0.3, law.harmonics = {{2.0, 0.05, -0.02}};
+  const auto plane = nbm::make_plane(Eigen::Vector2d(0, -1), Eigen::Vector2d(1, 1), law);
+  // phi = n . (x - p) - w(t), n = (1, 1)/sqrt 2.
+  const Eigen::Vector2d x(0.3, 0.2);
+  EXPECT_NEAR(plane->at(x.data(), 0.7).phi, (0.3 + 1.2) / std::sqrt(2.0) - law.value(0.7), 1e-15);
+  EXPECT_TRUE(plane->flat());
+  EXPECT_FALSE(plane->fixed());
+  expect_consistent(*plane, x, 0.7);
+
+  const auto bowl = nbm::make_ball(Eigen::Vector2d(0.1, 0), 1.25, nbm::Side::kInside,
+                                   Eigen::Vector2d(1, 0), law, law);
+  EXPECT_NEAR(bowl->at(x.data(), 0.0).phi,
+              1.25 + law.value(0) - (x - Eigen::Vector2d(0.1 + law.value(0), 0)).norm(), 1e-15);
+  expect_consistent(*bowl, x, 0.4);
+  const auto ball = nbm::make_ball(Eigen::Vector3d(0, 0, -1), 0.7, nbm::Side::kOutside);
+  const Eigen::Vector3d y(0.2, -0.3, 0.4);
+  EXPECT_NEAR(ball->at(y.data(), 3.0).phi, (y - Eigen::Vector3d(0, 0, -1)).norm() - 0.7, 1e-15);
+  EXPECT_TRUE(ball->fixed());
+  expect_consistent(*ball, y, 3.0);
+  const auto cylinder = nbm::make_cylinder(Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 0, 0), 0.5,
+                                           nbm::Side::kOutside, Eigen::Vector3d(0, 1, 1), law);
+  // Distance to the axis: the x coordinate does not count.
+  const Eigen::Vector3d c0(0, law.value(0) / std::sqrt(2.0), -1 + law.value(0) / std::sqrt(2.0));
+  EXPECT_NEAR(cylinder->at(y.data(), 0.0).phi,
+              Eigen::Vector2d(y(1) - c0(1), y(2) - c0(2)).norm() - 0.5, 1e-15);
+  expect_consistent(*cylinder, y, 1.1);
+}
+
+TEST(RigidObstacle, BadInputNamed) {
+  const auto expect_throw_with = nbm_test::expect_throw_with<nbm::InputError>;
+  expect_throw_with([] { nbm::make_plane(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 0)); },
+                    {"plane normal", "zero vector"});
+  expect_throw_with([] { nbm::make_plane(Eigen::Vector2d(0, 0), Eigen::Vector3d(0, 0, 1)); },
+                    {"plane normal", "expected 2"});
+  expect_throw_with(
+      [] { nbm::make_ball(Eigen::Vector2d(0, 0), -1, nbm::Side::kInside); },
+      {"circle radius", "R > 0"});
+  expect_throw_with(
+      [] { nbm::make_ball(Eigen::Vector3d(0, 0, NAN), 1, nbm::Side::kInside); },
+      {"sphere centre", "non-finite"});
+  nbm::TimeLaw moving;
+  moving.rate = 1;
+  expect_throw_with(
+      [&] { nbm::make_ball(Eigen::Vector2d(0, 0), 1, nbm::Side::kInside, Eigen::VectorXd(), moving); },
+      {"circle direction", "needs the direction"});
+  nbm::TimeLaw bad;
+  bad.harmonics = {{INFINITY, 1, 0}};
+  expect_throw_with([&] { nbm::make_plane(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1), bad); },
+                    {"plane shift", "non-finite"});
+  expect_throw_with(
+      [] { nbm::make_cylinder(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1), 1, nbm::Side::kInside); },
+      {"cylinder", "expected 3"});
+}
+
+// A body, its problem in the user's axes and the stepper, started at rest.
+struct FrameRun {
+  CurvedBody body;
+  std::unique_ptr<nbm::ContactProblem> problem;
+  std::unique_ptr<nbm::FollowingFrameStepper> stepper;
+  int max_frame_iterations = 0;
+
+  FrameRun(CurvedBody b, std::shared_ptr<const nbm::RigidObstacle> obstacle, double dt,
+           double rayleigh_stiffness = 0)
+      : body(std::move(b)) {
+    const long n = body.a.K.rows();
+    std::vector<nbm::Index> dofs(body.contact_dofs.begin(), body.contact_dofs.end());
+    problem = std::make_unique<nbm::ContactProblem>(
+        body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, dofs, body.dim),
+        std::vector<nbm::Index>{});
+    nbm::Damping damping;
+    damping.b_K = rayleigh_stiffness;
+    stepper = std::make_unique<nbm::FollowingFrameStepper>(
+        *problem, body.a.M, body.positions, std::move(obstacle), dt, nbm::FollowingFrameOptions{},
+        damping);
+    stepper->initialize(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), body.a.F);
+  }
+  void step() {
+    max_frame_iterations =
+        std::max(max_frame_iterations, stepper->step(body.a.F).active_set_iterations);
+  }
+  // Total energy plus what the damping took, minus what a moving obstacle gave.
+  double balance() const {
+    const nbm::Energies e = stepper->energies();
+    return e.total() + e.dissipated - e.obstacle_work;
+  }
+  Eigen::VectorXd centre() const {
+    return nbm_test::centre_of_mass(stepper->mass(), body.positions, stepper->u());
+  }
+  // The true penetration and hovering of the contact nodes now, relative to
+  // the body size: max(-phi) over all nodes and max |phi| over closed ones.
+  void expect_on_surface(double tolerance) const {
+    const Eigen::VectorXd phi = stepper->gaps();
+    const auto& closed = stepper->active();
+    const double L = stepper->body_size();
+    for (Eigen::Index k = 0; k < phi.size(); ++k) {
+      ASSERT_GE(phi(k), -tolerance * L) << "node " << k << " penetrates at t = " << stepper->time();
+      if (closed[k]) {
+        ASSERT_LE(phi(k), tolerance * L) << "closed node " << k << " hovers at t = " << stepper->time();
+      }
+    }
+  }
+};
+
+// Stated tolerance of impenetrability: 1e-12 of the body size.
+constexpr double kSurface = 1e-12;
+
+// Largest error of the disc's angle in a bowl against the rigid pendulum over
+// one period, and the largest drift of the energy (in m g h).
+std::pair<double, double> disc_in_bowl(int rings, double E, double nu, double dt) {
+  // Disc r = 0.5 released at rest 30 degrees up a circular bowl R = 1.25:
+  // its centre swings on the circle rho = R - r like a pendulum.
+  const double r = 0.5, R = 1.25, rho = R - r, g = 10, theta0 = pi / 6;
+  const Eigen::Vector2d c(rho * std::sin(theta0), -rho * std::cos(theta0));
+  FrameRun run(nbm_test::disc(r, c, rings, 1, E, nu, g),
+               nbm::make_ball(Eigen::Vector2d(0, 0), R, nbm::Side::kInside), dt);
+  const double E0 = run.balance(), mgh = run.body.a.mass * g * rho * (1 - std::cos(theta0));
+  const int steps = static_cast<int>(2 * pi * std::sqrt(rho / g) * 1.02 / dt);
+  double angle_error = 0, energy_error = 0, theta_ref = theta0, omega_ref = 0;
+  for (int n = 1; n <= steps; ++n) {
+    run.step();
+    run.expect_on_surface(kSurface);
+    nbm_test::rigid_step(theta_ref, omega_ref, g, rho, -1, dt, 10);
+    const Eigen::VectorXd cm = run.centre();
+    angle_error = std::max(angle_error, std::abs(std::atan2(cm(0), -cm(1)) - theta_ref));
+    energy_error = std::max(energy_error, std::abs(run.balance() - E0) / mgh);
+  }
+  EXPECT_LE(run.max_frame_iterations, 6) << "the frame's fixed point converges in a few iterations";
+  std::printf("disc in bowl, %d rings, E = %g, nu = %g, dt = %g: angle error %.2e rad, energy "
+              "drift %.2e m g h, at most %d frame iterations\n",
+              rings, E, nu, dt, angle_error, energy_error, run.max_frame_iterations);
+  return {angle_error, energy_error};
+}
+
+TEST(FollowingFrame, DiscSlidingInBowlConvergesToTheRigidPendulum) {
+  // The polygonal disc's centre rides r (1 - cos(pi / n_boundary)) up and
+  // down: the error to the rigid disc falls with the mesh.
+  for (auto [E, nu] : {std::pair{1e5, 0.3}, {1e4, 0.45}}) {
+    const auto [coarse, coarse_energy] = disc_in_bowl(6, E, nu, 5e-4);
+    const auto [fine, fine_energy] = disc_in_bowl(12, E, nu, 5e-4);
+    EXPECT_LT(fine, 0.6 * coarse);
+    EXPECT_LT(fine, 5e-3);
+    EXPECT_LT(coarse_energy, 3e-3) << "energy conserved to the scheme's accuracy";
+    EXPECT_LT(fine_energy, 5e-4) << "energy conserved to the scheme's accuracy";
+  }
+}
+
+// The angle of the centre from the top of the obstacle when the body leaves
+// it for good (no contact force for 0.2 s after).
+double slide_off(nbm_test::CurvedBody body, std::shared_ptr<const nbm::RigidObstacle> obstacle,
+                 double dt, double b_K, double t_end, int up) {
+  FrameRun run(std::move(body), std::move(obstacle), dt, b_K);
+  const double E0 = run.balance(), scale = run.body.a.mass * 10 * 0.5;
+  double theta_detach = -1;
+  int free_steps = 0;
+  bool touched = false;
+  while (run.stepper->time() < t_end && free_steps * dt < 0.2) {
+    run.step();
+    run.expect_on_surface(kSurface);
+    const Eigen::VectorXd cm = run.centre();
+    const Eigen::VectorXd radial = cm.head(up + 1);
+    const double theta = std::atan2(radial.head(up).norm(), radial(up));
+    if ((run.stepper->reactions().array() > 0).any()) {
+      touched = true;
+      free_steps = 0;
+    } else if (touched && free_steps++ == 0) {
+      theta_detach = theta;
+    }
+    EXPECT_LT(std::abs(run.balance() - E0), 5e-3 * scale) << "energy balance at t = " << run.stepper->time();
+  }
+  EXPECT_TRUE(touched);
+  EXPECT_GE(free_steps * dt, 0.2) << "the body left the obstacle";
+  return theta_detach;
+}
+
+TEST(FollowingFrame, DiscSlidesOffACylinderWhereTheRigidDiscLeaves) {
+  // A rigid frictionless disc on top of a cylinder, from rest at theta0,
+  // leaves it where the normal force m (g cos theta - rho theta'^2) vanishes:
+  // with rho theta'^2 = 2 g (cos theta0 - cos theta), cos theta = 2/3 cos theta0.
+  // Stiffness-proportional damping calms the bouncing of the dropped elastic
+  // disc without acting on its rigid motion.
+  const double r = 0.5, R = 1, rho = R + r, theta0 = 0.2;
+  const double rigid = std::acos(2.0 / 3 * std::cos(theta0));
+  std::vector<double> errors;
+  for (int rings : {6, 12}) {
+    const Eigen::Vector2d c(rho * std::sin(theta0), rho * std::cos(theta0));
+    const double theta = slide_off(nbm_test::disc(r, c, rings, 1, 1e5, 0.3, 10),
+                                   nbm::make_ball(Eigen::Vector2d(0, 0), R, nbm::Side::kOutside),
+                                   5e-4, 2e-3, 1.5, 1);
+    errors.push_back(std::abs(theta - rigid));
+    std::printf("disc off a cylinder, %d rings: leaves at %.4f rad, rigid %.4f\n", rings, theta, rigid);
+  }
+  EXPECT_LT(errors[1], 0.5 * errors[0]);
+  EXPECT_LT(errors[1], 0.06);
+}
+
+TEST(FollowingFrame, BallSlidesOffASphereAndAlongACylinder) {
+  const double r = 0.5, R = 1, rho = R + r, theta0 = 0.2;
+  const double rigid = std::acos(2.0 / 3 * std::cos(theta0));
+  const Eigen::Vector3d c(rho * std::sin(theta0), 0, rho * std::cos(theta0));
+  const double on_sphere =
+      slide_off(nbm_test::ball(r, c, 4, 1, 1e5, 0.3, 10),
+                nbm::make_ball(Eigen::Vector3d(0, 0, 0), R, nbm::Side::kOutside), 1e-3, 2e-3, 1.5, 2);
+  std::printf("ball off a sphere: leaves at %.4f rad, rigid %.4f\n", on_sphere, rigid);
+  EXPECT_NEAR(on_sphere, rigid, 0.05);
+  // The same in the plane across a cylinder along y (phi ignores y).
+  const double on_cylinder = slide_off(
+      nbm_test::ball(r, c, 4, 1, 1e5, 0.3, 10),
+      nbm::make_cylinder(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 1, 0), R, nbm::Side::kOutside),
+      1e-3, 2e-3, 1.5, 2);
+  std::printf("ball off a cylinder: leaves at %.4f rad, rigid %.4f\n", on_cylinder, rigid);
+  EXPECT_NEAR(on_cylinder, rigid, 0.05);
+}
+
+TEST(FollowingFrame, MovingBowlBalancesItsWork) {
+  // The bowl shakes sideways and breathes (its radius changes): the energy
+  // the body gains is the obstacle's work, to the scheme's accuracy.
+  nbm::TimeLaw shake, breathe;
+  shake.harmonics = {{8.0, 0.0, 0.02}};
+  breathe.offset = -0.005, breathe.harmonics = {{12.0, 0.005, 0.0}};
+  const double r = 0.5, R = 1.25, rho = R - r;
+  const Eigen::Vector2d c(rho * std::sin(0.3), -rho * std::cos(0.3));
+  for (double dt : {1e-3, 5e-4}) {
+    FrameRun run(nbm_test::disc(r, c, 8, 1, 1e4, 0.3, 10),
+                 nbm::make_ball(Eigen::Vector2d(0, 0), R, nbm::Side::kInside, Eigen::Vector2d(1, 0),
+                                shake, breathe),
+                 dt);
+    const double E0 = run.balance();
+    double drift = 0, work = 0;
+    while (run.stepper->time() < 1.0) {
+      run.step();
+      run.expect_on_surface(kSurface);
+      drift = std::max(drift, std::abs(run.balance() - E0));
+      work = std::max(work, std::abs(run.stepper->energies().obstacle_work));
+    }
+    std::printf("moving bowl, dt = %g: obstacle work up to %.3e, balance off by %.2e\n", dt, work, drift);
+    EXPECT_GT(work, 1e-2) << "the bowl does work";
+    EXPECT_LT(drift, 0.02 * work);
+  }
+}
+
+TEST(FollowingFrame, RestartIsExactAcrossFrameUpdates) {
+  const Eigen::Vector2d c(0.75 * std::sin(0.5), -0.75 * std::cos(0.5));
+  auto bowl = [] { return nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside); };
+  FrameRun whole(nbm_test::disc(0.5, c, 5, 1, 1e4, 0.3, 10), bowl(), 1e-3);
+  FrameRun second(nbm_test::disc(0.5, c, 5, 1, 1e4, 0.3, 10), bowl(), 1e-3);
+  for (int n = 0; n < 150; ++n) whole.step();
+  const auto& s = *whole.stepper;
+  second.stepper->restore(s.u(), s.v(), s.a(), s.active(), whole.body.a.F, s.time());
+  for (int n = 0; n < 150; ++n) whole.step(), second.step();
+  EXPECT_EQ((whole.stepper->u() - second.stepper->u()).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ((whole.stepper->v() - second.stepper->v()).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(whole.stepper->time(), second.stepper->time());
+}
+
+TEST(FollowingFrame, BadInputNamed) {
+  const auto body = nbm_test::disc(0.5, Eigen::Vector2d(0, 0), 2, 1, 1e4, 0.3, 10);
+  const long n = body.a.K.rows();
+  std::vector<nbm::Index> dofs(body.contact_dofs.begin(), body.contact_dofs.end());
+  const nbm::ContactProblem problem(body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, dofs, 2),
+                                    std::vector<nbm::Index>{});
+  std::shared_ptr<const nbm::RigidObstacle> bowl =
+      nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside);
+  const auto expect_throw_with = nbm_test::expect_throw_with<nbm::InputError>;
+  const auto make = [&](const nbm::ContactProblem& p, const Eigen::MatrixXd& X,
+                        std::shared_ptr<const nbm::RigidObstacle> o, double dt,
+                        const nbm::Damping& damping = {}) {
+    nbm::FollowingFrameStepper(p, body.a.M, X, std::move(o), dt, {}, damping);
+  };
+  expect_throw_with([&] { make(problem, body.positions, bowl, 0); }, {"dt", "positive"});
+  nbm::Damping damping;
+  damping.b_K = -1;
+  expect_throw_with([&] { make(problem, body.positions, bowl, 1e-3, damping); }, {"damping"});
+  damping.b_K = 0;
+  damping.C_user = body.a.M;
+  expect_throw_with([&] { make(problem, body.positions, bowl, 1e-3, damping); },
+                    {"damping matrix", "Rayleigh damping only"});
+  expect_throw_with(
+      [&] { make(problem, body.positions, nbm::make_ball(Eigen::Vector3d(0, 0, 0), 1, nbm::Side::kInside), 1e-3); },
+      {"obstacle", "dimension 3", "expected 2"});
+  expect_throw_with([&] { make(problem, body.positions.leftCols(1), bowl, 1e-3); },
+                    {"positions", "expected"});
+  // A rotated contact set: its redistributed mass would depend on the normals.
+  std::vector<double> normals;
+  for (std::size_t k = 0; k < dofs.size() / 2; ++k) normals.insert(normals.end(), {0.6, 0.8});
+  const nbm::ContactProblem tilted(
+      body.a.M, body.a.K, nbm::ContactSet(n, dofs, normals, Eigen::VectorXd::Zero(dofs.size() / 2)),
+      std::vector<nbm::Index>{});
+  expect_throw_with([&] { make(tilted, body.positions, bowl, 1e-3); }, {"user's axes"});
+  // A disc of radius 0.5 centred in a bowl of radius 0.4 starts inside the obstacle.
+  nbm::FollowingFrameStepper s(problem, body.a.M, body.positions,
+                               nbm::make_ball(Eigen::Vector2d(0, 0), 0.4, nbm::Side::kInside), 1e-3);
+  expect_throw_with([&] { s.step(body.a.F); }, {"no initial state"});
+  expect_throw_with([&] { s.initialize(Eigen::VectorXd::Zero(n), Eigen::VectorXd::Zero(n), body.a.F); },
+                    {"initial penetration", "circle of radius"});
+  expect_throw_with([&] { s.initialize(Eigen::VectorXd::Zero(3), Eigen::VectorXd::Zero(n), body.a.F); },
+                    {"u", "expected " + std::to_string(n)});
+}
+
+}  // namespace
