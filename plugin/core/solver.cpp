@@ -305,6 +305,10 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
        {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}, {&aa, "a"}})
     if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
   if (!std::isfinite(t)) throw InputError("t: non-finite time");
+  // Runs start at t = 0 (initialize) and only go forward: a saved time is >= 0.
+  if (t < 0)
+    throw InputError("t: " + std::to_string(t) +
+                     ", expected the saved time >= 0 (runs start at t = 0; nbmTime)");
   if (static_cast<long>(active.size()) != p.n_contact())
     throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
                      std::to_string(p.n_contact()) + " (one entry per contact node)");
