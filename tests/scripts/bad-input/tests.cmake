@@ -148,5 +148,6 @@ nbm_bad_plane_case(dirichlet-corner [=[NBM: contact dofs: dof [0-9]+ of contact 
 nbm_bad_plane_case(swapped-normals-gaps [=[NBM: normals: size 5, expected 10 ]=])
 nbm_bad_plane_case(normals-unnormalised [=[NBM: normals: contact node 0 has \|n\| = 0\.250*, expected a unit vector]=])
 nbm_bad_plane_case(initial-penetration [=[nbmInit: u: initial penetration at contact node [0-9]+ \(gap -0\.10*]=])
+nbm_bad_plane_case(dofs-other-node [=[NBM: contact dofs: dofs [0-9]+ and [0-9]+ of contact node 0 are at different positions \([0-9.]+ apart, by positions\). expected the 3 components of one node, at one point]=])
 nbm_bad_plane_case(F-scalar-space [=[nbmInit: F: size 25, expected 50]=])
 nbm_bad_plane_case(explicit-zero-lumped-mass [=[NBM: M \(row-sum lumped\): entry [0-9]+ is -?0(\.0*)?, expected a positive lumped mass]=] -order 2)
