@@ -155,6 +155,9 @@ class Stepper {
   Vector gaps(const Vector& u, const Vector& g) const;
   /// Throws InputError if u penetrates the obstacle at gaps g beyond round-off.
   void check_penetration(const Vector& u, const Vector& g, const char* what) const;
+  /// Throws InputError if a gap of `next` differs from the current one by
+  /// more than its rates allow over dt (a jump of the obstacle, method.md §8).
+  void check_obstacle_motion(const Obstacle& next) const;
 
   const ContactProblem& problem_;
   double dt_;
