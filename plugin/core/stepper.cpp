@@ -189,8 +189,9 @@ StepReport Stepper::step(const ContactLoad& next) {
 void Stepper::check_obstacle_motion(const Obstacle& next) const {
   // A gap may change over a step by what its rates at the two ends allow,
   // dt (max |g'| + dt max |g''|), with a margin of 2 for the variation of the
-  // rates within the step (a harmonic motion at omega dt = 1 uses 1.1 of it)
-  // and round-off of the gaps and of the displacements. Anything beyond is a
+  // rates within the step (a harmonic motion uses at most 1 of dt (...) at
+  // any phase, 0.71 at omega dt = 1; a motion starting or stopping within a
+  // step, 1) and round-off of the gaps and of the displacements. Anything beyond is a
   // jump of the obstacle (method.md §8, "Jumps"): an obstacle jumping into a
   // body has no well-defined work (an impulse the schemes would take as a
   // finite force over dt), and one jumping away leaves the trapezoidal work
