@@ -20,6 +20,10 @@ namespace {
 
 std::vector<Index> to_index(const std::vector<long>& v) { return {v.begin(), v.end()}; }
 
+// Round-off of a penetration, relative to the displacement scale (as the
+// steppers' check of an initial state).
+constexpr double kReplacePenetrationTolerance = 1e-12;
+
 Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   if (static_cast<long>(x.size()) != n)
     throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
@@ -359,11 +363,30 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
     throw InputError("replace contacts: no state yet; call the initialization first");
   impl_->check_unchanged(u, v);
   const double t = time();
+  // Moreau-Jean's states penetrate by O(dt v) and keep it (the NBM schemes'
+  // never do: start() checks them): the new description may not be
+  // penetrated deeper than the last obstacle is.
+  const double own_penetration = std::max(0.0, -impl_->stepper->gaps().minCoeff());
   Impl::Saved saved = impl_->save();  // kept until the new description has worked
   std::vector<double> uu = u, vv = v;
   try {
     impl_->build(impl_->M_user, impl_->K_user, contact);
     impl_->start(uu, vv, F, t, true);
+    if (impl_->options.scheme == "moreau-jean") {
+      const Stepper& st = *impl_->stepper;
+      const Vector gap = st.gaps();
+      const double u_scale = st.u().cwiseAbs().maxCoeff();
+      for (Index k = 0; k < gap.size(); ++k)
+        if (gap(k) < -own_penetration -
+                         kReplacePenetrationTolerance *
+                             std::max(u_scale, std::abs(st.obstacle().g(k))))
+          throw InputError("u: penetration at contact node " + std::to_string(k) +
+                           " of the new contact description (gap " + std::to_string(gap(k)) +
+                           " < 0), deeper than the state's own penetration of the last "
+                           "obstacle (" + std::to_string(own_penetration) +
+                           ", Moreau-Jean's); expected a description the body does not "
+                           "penetrate");
+    }
   } catch (...) {
     impl_->put_back(saved);
     throw;

@@ -136,6 +136,7 @@ nbm_bad_case(acceleration-before-init [=[nbmAcceleration: call nbmInit first]=])
 nbm_bad_case(replace-before-init [=[nbmReplaceContacts: no state yet. call nbmInit first]=])
 nbm_bad_case(replace-normals-size [=[nbmReplaceContacts: normals: size 0, expected 1 \(one component per contact dof\)]=])
 nbm_bad_case(replace-penetrating [=[nbmReplaceContacts: u: initial penetration at contact node 0]=])
+nbm_bad_case(replace-penetrating-moreau-jean [=[nbmReplaceContacts: u: penetration at contact node 0 of the new contact description \(gap -0\.010*]=])
 nbm_bad_case(replace-u-changed [=[nbmReplaceContacts: u, v: changed since the last step]=])
 
 # ---- an NBM declared without construction ----
