@@ -13,6 +13,9 @@ constexpr int kMaxRings = 4;
 // Reciprocal condition of the (pdim+1)^2 moment matrix below which the
 // neighbour positions are taken as affinely dependent.
 constexpr double kMinRcond = 1e-10;
+// The dofs of one contact node must have positions equal to this fraction of
+// the body's extent.
+constexpr double kSamePointTolerance = 1e-10;
 
 // Minimum-norm w with V w = b, V = [1; x_d] (columns: candidate dofs).
 // Returns false if the candidates do not span the affine hull.
@@ -53,6 +56,27 @@ SparseMatrix redistributed_mass(const ContactProblem& problem, const SparseMatri
   if (!positions.allFinite()) throw InputError("positions: non-finite coordinates");
 
   const ContactSet& contacts = problem.contacts();
+  // The dofs of a contact node are the components of one point: nothing else
+  // tells a third component taken from another node (d = 3 dofs per node on
+  // a 2D problem) from a node's own. Equal to round-off of the body's extent
+  // (different nodes of a mesh are apart by a mesh size).
+  {
+    const double extent =
+        (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).maxCoeff();
+    const double tol = kSamePointTolerance * extent;
+    for (Index k = 0; k < contacts.size(); ++k)
+      for (int j = 1; j < contacts.dim(); ++j) {
+        const Index d0 = contacts.dof(k, 0), dj = contacts.dof(k, j);
+        const double distance = (positions.row(dj) - positions.row(d0)).cwiseAbs().maxCoeff();
+        if (distance > tol)
+          throw InputError("contact dofs: dofs " + std::to_string(d0) + " and " +
+                           std::to_string(dj) + " of contact node " + std::to_string(k) +
+                           " are at different positions (" + std::to_string(distance) +
+                           " apart, by positions); expected the " +
+                           std::to_string(contacts.dim()) +
+                           " components of one node, at one point");
+      }
+  }
   std::vector<char> excluded(n_user, 0);  // contact-node and fixed dofs
   for (Index k = 0; k < contacts.size(); ++k)
     for (int j = 0; j < contacts.dim(); ++j) excluded[contacts.dof(k, j)] = 1;

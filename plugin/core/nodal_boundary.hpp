@@ -20,6 +20,10 @@ class NodalBoundary {
   /// Solves the LCP at the interior part of u under the load F against the
   /// obstacle at gaps g, and overwrites u_C with its solution; returns the
   /// LCP result (z = gaps, w = reactions), valid until the next call.
+  /// Nodes whose gap exceeds 1e3 times the displacement scale D =
+  /// max(|u|, |F_C,k| / K_kk) are solved against a nearer obstacle, so that
+  /// their huge gaps do not cost the other nodes their digits (exact: the
+  /// solution is the same while they stay open, which is checked).
   const LcpResult& enforce(Vector& u, const Vector& F, const Vector& g,
                            const ActiveSet& guess) const;
 
@@ -54,7 +58,9 @@ class NodalBoundary {
   CachedLcpSolver lcp_;
   // Workspaces (one value per contact node), so that the methods called at
   // every step do not allocate: one call at a time.
-  mutable Vector q_, work_, Kx_;
+  mutable Vector q_, work_, Kx_, shift_;
+  Vector K_CC_diagonal_;  // > 0 (K_CC is positive definite): displacement scales
+  mutable LcpResult result_;  // enforce()'s result when it shifted obstacles
   mutable std::vector<Index> open_;
 };
 

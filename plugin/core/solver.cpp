@@ -22,6 +22,10 @@ namespace {
 
 std::vector<Index> to_index(const std::vector<long>& v) { return {v.begin(), v.end()}; }
 
+// Round-off of a penetration, relative to the displacement scale (as the
+// steppers' check of an initial state).
+constexpr double kReplacePenetrationTolerance = 1e-12;
+
 Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   if (static_cast<long>(x.size()) != n)
     throw InputError(std::string(name) + ": size " + std::to_string(x.size()) + ", expected " +
@@ -395,6 +399,10 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
        {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}, {&aa, "a"}})
     if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
   if (!std::isfinite(t)) throw InputError("t: non-finite time");
+  // Runs start at t = 0 (initialize) and only go forward: a saved time is >= 0.
+  if (t < 0)
+    throw InputError("t: " + std::to_string(t) +
+                     ", expected the saved time >= 0 (runs start at t = 0; nbmTime)");
   if (static_cast<long>(active.size()) != p.n_contact())
     throw InputError("active: size " + std::to_string(active.size()) + ", expected " +
                      std::to_string(p.n_contact()) + " (one entry per contact node)");
@@ -445,11 +453,30 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
     throw InputError("replace contacts: no state yet; call the initialization first");
   impl_->check_unchanged(u, v);
   const double t = time();
+  // Moreau-Jean's states penetrate by O(dt v) and keep it (the NBM schemes'
+  // never do: start() checks them): the new description may not be
+  // penetrated deeper than the last obstacle is.
+  const double own_penetration = std::max(0.0, -impl_->stepper->gaps().minCoeff());
   Impl::Saved saved = impl_->save();  // kept until the new description has worked
   std::vector<double> uu = u, vv = v;
   try {
     impl_->build(impl_->M_user, impl_->K_user, contact);
     impl_->start(uu, vv, F, t, true);
+    if (impl_->options.scheme == "moreau-jean") {
+      const Stepper& st = *impl_->stepper;
+      const Vector gap = st.gaps();
+      const double u_scale = st.u().cwiseAbs().maxCoeff();
+      for (Index k = 0; k < gap.size(); ++k)
+        if (gap(k) < -own_penetration -
+                         kReplacePenetrationTolerance *
+                             std::max(u_scale, std::abs(st.obstacle().g(k))))
+          throw InputError("u: penetration at contact node " + std::to_string(k) +
+                           " of the new contact description (gap " + std::to_string(gap(k)) +
+                           " < 0), deeper than the state's own penetration of the last "
+                           "obstacle (" + std::to_string(own_penetration) +
+                           ", Moreau-Jean's); expected a description the body does not "
+                           "penetrate");
+    }
   } catch (...) {
     impl_->put_back(saved);
     throw;

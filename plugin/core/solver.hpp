@@ -171,7 +171,8 @@ class Solver {
   /// this call for a moving one, before the next step). The obstacle's work
   /// restarts from zero; the step and fallback counters go on. Throws as the
   /// constructor does on a bad description, and InputError if the state
-  /// penetrates the new obstacle.
+  /// penetrates the new obstacle (scheme "moreau-jean", whose states
+  /// penetrate by O(dt v): deeper than it penetrates the last one).
   void replace_contacts(const ContactDescription& contact, std::vector<double>& u,
                         std::vector<double>& v, const std::vector<double>& F);
 

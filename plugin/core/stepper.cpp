@@ -12,6 +12,11 @@ namespace {
 // Initial penetration is judged with this relative tolerance on the
 // displacement scale, so that a body released exactly on the obstacle passes.
 constexpr double kPenetrationTolerance = 1e-12;
+// Change of a gap over one step allowed beyond what its rates reach
+// (Stepper::check_obstacle_motion): a factor on the reach, and round-off
+// relative to the gaps and the displacements.
+constexpr double kObstacleReachMargin = 2;
+constexpr double kObstacleRoundoff = 1e-12;
 
 // (const char* names: a check on every step must not allocate.)
 void check_vector(const Vector& x, Index n, const char* name, const char* expected) {
@@ -158,6 +163,7 @@ StepReport Stepper::step(const ContactLoad& next) {
   // only when the obstacle moves (lambda_n taken before the state changes).
   const bool moving = next.obstacle.g != obstacle_.g;
   if (moving) {
+    check_obstacle_motion(next.obstacle);
     reactions(lambda_old_);
     dg_ = next.obstacle.g - obstacle_.g;
   }
@@ -178,6 +184,36 @@ StepReport Stepper::step(const ContactLoad& next) {
     dissipated_ += dt_ * v_mid_.dot(Cv_);
   }
   return report;
+}
+
+void Stepper::check_obstacle_motion(const Obstacle& next) const {
+  // A gap may change over a step by what its rates at the two ends allow,
+  // dt (max |g'| + dt max |g''|), with a margin of 2 for the variation of the
+  // rates within the step (a harmonic motion uses at most 1 of dt (...) at
+  // any phase, 0.71 at omega dt = 1; a motion starting or stopping within a
+  // step, 1) and round-off of the gaps and of the displacements. Anything beyond is a
+  // jump of the obstacle (method.md §8, "Jumps"): an obstacle jumping into a
+  // body has no well-defined work (an impulse the schemes would take as a
+  // finite force over dt), and one jumping away leaves the trapezoidal work
+  // wrong by the jump times the half-reaction.
+  const double u_scale = u_.cwiseAbs().maxCoeff();
+  const Obstacle& o = obstacle_;
+  for (Index k = 0; k < next.g.size(); ++k) {
+    const double jump = next.g(k) - o.g(k);
+    const double rate = std::max(std::abs(o.g_rate(k)), std::abs(next.g_rate(k)));
+    const double accel = std::max(std::abs(o.g_accel(k)), std::abs(next.g_accel(k)));
+    const double reach = dt_ * (rate + dt_ * accel);
+    const double roundoff =
+        kObstacleRoundoff * std::max({std::abs(o.g(k)), std::abs(next.g(k)), u_scale});
+    if (std::abs(jump) > kObstacleReachMargin * reach + roundoff)
+      throw InputError("obstacle: the gap of contact node " + std::to_string(k) + " jumps by " +
+                       std::to_string(jump) + " in one step (dt = " + std::to_string(dt_) +
+                       "), more than its rates allow (2 dt (|g'| + dt |g''|) = " +
+                       std::to_string(kObstacleReachMargin * reach) +
+                       "); expected a continuous motion: give the gap rates and accelerations "
+                       "with the gaps (nbmObstacle's gdot, gddot), or move the obstacle over "
+                       "more steps");
+  }
 }
 
 Energies Stepper::energies() const {

@@ -159,6 +159,9 @@ class Stepper {
   /// Adds to the obstacle's work a scheme that accounts for it itself (a
   /// contact frame that follows the body, whose obstacle is not a gap vector).
   void add_obstacle_work(double work) { obstacle_work_ += work; }
+  /// Throws InputError if a gap of `next` differs from the current one by
+  /// more than its rates allow over dt (a jump of the obstacle, method.md §8).
+  void check_obstacle_motion(const Obstacle& next) const;
 
   const ContactProblem& problem_;
   double dt_;

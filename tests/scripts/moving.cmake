@@ -108,6 +108,8 @@ nbm_bad_obstacle_case(obstacle-gdot-inf [=[nbmObstacle: gap rates: non-finite en
 nbm_bad_obstacle_case(obstacle-gddot-nan-midrun [=[nbmObstacle: gap accelerations: non-finite entries]=])
 nbm_bad_obstacle_case(obstacle-unconstructed [=[nbmObstacle: the NBM object was not constructed]=])
 nbm_bad_obstacle_case(obstacle-penetration [=[nbmInit: u: initial penetration at contact node 0 \(gap -0\.10*]=])
+nbm_bad_obstacle_case(obstacle-jump-newmark [=[nbmStep: obstacle: the gap of contact node 0 jumps by -0\.[0-9]+ in one step \(dt = 0\.020*\), more than its rates allow]=])
+nbm_bad_obstacle_case(obstacle-jump-moreau-jean [=[nbmStep: obstacle: the gap of contact node 0 jumps by -0\.[0-9]+ in one step \(dt = 0\.020*\), more than its rates allow]=])
 nbm_bad_obstacle_case(loadrates-size [=[nbmLoadRates: load rate: size 21, expected 11]=])
 nbm_bad_obstacle_case(loadrates-nan [=[nbmLoadRates: load acceleration: non-finite entries]=])
 nbm_bad_obstacle_case(loadrates-unconstructed [=[nbmLoadRates: the NBM object was not constructed]=])
