@@ -52,7 +52,7 @@ SCRIPT_TESTS+='|bouncing-bar-convergence-explicit|bouncing-bar-convergence-redis
 SCRIPT_TESTS+='|clamped-bar-convergence-P1-scaled|restart-newmark|restart-disc-P2'
 # Obstacles: a 3D drop, the re-linearised plate on a cylinder (nbmReplaceContacts),
 # a moving table restarted across processes (nbmObstacle, the scheme state).
-SCRIPT_TESTS+='|obstacle-drop-3d-20-P1-redistributed|obstacle-plate-cylinder-relinearized'
+SCRIPT_TESTS+='|obstacle-drop-3d-20-P1-redistributed|obstacle-plate-cylinder-follow'
 SCRIPT_TESTS+='|restart-table-moreau-jean|blade-tip-P1'
 # Damping in the steppers, a forced response and a backbone through the binding.
 SCRIPT_TESTS+='|plate-damping|forced-plate-linear|plate-backbone-linear'

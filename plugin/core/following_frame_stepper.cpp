@@ -27,6 +27,18 @@ void check_options(const FollowingFrameOptions& o, const Damping& damping) {
                      "damping only (rayleighM, rayleighK)");
 }
 
+// Y of at most this many entries is kept whatever its size next to L (as in
+// massless_newmark_stepper.cpp): its products run from the cache.
+constexpr double kCachedColumnEntries = 1 << 18;
+
+// Row k of a positions matrix as a point (no heap: called per node and
+// frame iteration).
+Eigen::Vector3d point(const Matrix& p, Index k) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  for (Index j = 0; j < p.cols(); ++j) x(j) = p(k, j);
+  return x;
+}
+
 }  // namespace
 
 FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
@@ -73,18 +85,40 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
   for (Index i = 0; i < n_c_ * d_; ++i) e.emplace_back(node_dofs_[i], i, 1.0);
   SparseMatrix E(problem.size(), n_c_ * d_);
   E.setFromTriplets(e.begin(), e.end());
-  Z_ = S_->gram(E);
+  // Y = L^-1 P E_N kept where it is small next to L (as the massless step of
+  // method.md §5 does): a step is then one substitution each way plus the
+  // products with Y, instead of two whole solves.
+  const double entries = S_->forward_entries(E);
+  keep_columns_ = options_.columns == ContactColumns::kAuto
+                      ? entries <= kCachedColumnEntries || 8 * entries <= S_->factor_entries()
+                      : options_.columns == ContactColumns::kKept;
+  if (keep_columns_)
+    Y_ = S_->forward(E, &Z_);
+  else
+    Z_ = S_->gram(E);
 
-  // K_NN, dense, for the start's static relation of the contact nodes.
-  Matrix K_NN(n_c_ * d_, n_c_ * d_);
+  // K_NN (sparse: the contact nodes couple to their neighbours on the
+  // boundary) for the start's static relation and the rates of the nodes.
+  std::vector<Index> position_in_N(problem.size(), -1);
+  for (Index i = 0; i < n_c_ * d_; ++i) position_in_N[node_dofs_[i]] = i;
+  std::vector<Triplet> k_nn;
+  for (Index j = 0; j < n_c_ * d_; ++j)
+    for (SparseMatrix::InnerIterator it(problem.K(), node_dofs_[j]); it; ++it)
+      if (const Index i = position_in_N[it.row()]; i >= 0)
+        k_nn.emplace_back(static_cast<int>(i), static_cast<int>(j), it.value());
+  K_NN_matrix_.resize(n_c_ * d_, n_c_ * d_);
+  K_NN_matrix_.setFromTriplets(k_nn.begin(), k_nn.end());
+  K_NN_.compute(K_NN_matrix_);
+  // K_N: the rows of the contact nodes' dofs (K symmetric: its columns).
+  std::vector<Triplet> k_n;
   for (Index i = 0; i < n_c_ * d_; ++i)
-    for (Index j = 0; j < n_c_ * d_; ++j)
-      K_NN(i, j) = problem.K().coeff(node_dofs_[i], node_dofs_[j]);
-  const Eigen::LLT<Matrix> llt(K_NN);
-  if (llt.info() != Eigen::Success)
+    for (SparseMatrix::InnerIterator it(problem.K(), node_dofs_[i]); it; ++it)
+      k_n.emplace_back(static_cast<int>(i), static_cast<int>(it.row()), it.value());
+  K_N_.resize(n_c_ * d_, problem.size());
+  K_N_.setFromTriplets(k_n.begin(), k_n.end());
+  if (K_NN_.info() != Eigen::Success)
     throw NumericalError("K: its block of the contact nodes is not positive definite (a "
                          "contact node moves freely when all others are held)");
-  K_NN_inverse_ = llt.solve(Matrix::Identity(n_c_ * d_, n_c_ * d_));
   lambda_.setZero(n_c_);
   normals_.setZero(n_c_, d_);
   open_guess_.assign(n_c_, true);
@@ -103,39 +137,75 @@ void FollowingFrameStepper::place_nodes(const Matrix& p, Vector& u) const {
     for (int j = 0; j < d_; ++j) u(node_dofs_[k * d_ + j]) = p(k, j) - X_(k, j);
 }
 
-int FollowingFrameStepper::solve_frame(const Matrix& p_free, const Matrix& compliance,
+int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& compliance,
                                        double scale, double t, Matrix& p) {
   int iterations = 0;
   const Index m = n_c_ * d_;
-  Matrix A(n_c_, n_c_), ZN(m, n_c_);
-  Vector q(n_c_);
+  Vector q(n_c_), shift(m);
+  // The LCP runs on the candidates only: the nodes closed before and those
+  // the step would bring into the obstacle. A node left out has lambda = 0
+  // and must end with a gap >= 0 under the candidates' forces, which is
+  // checked; any that does not joins them and the LCP is solved again, so
+  // the result is the LCP's on all nodes, at a cost that grows with the
+  // candidates, not with n_c (header).
+  std::vector<char> candidate(n_c_, 0);
+  for (Index k = 0; k < n_c_; ++k) candidate[k] = !open_guess_[k];
+  std::vector<Index> C;
+  std::vector<bool> guess;
+  Matrix ZN, A;
+  Vector q_C;
   double last_move = std::numeric_limits<double>::infinity();
   const double tolerance = options_.frame_tolerance * size_;
   for (int it = 0; it < options_.max_frame_iterations; ++it) {
     ++iterations;
     // The obstacle linearised at p: normal n_k, gap h_k (method.md §8, §10).
     for (Index k = 0; k < n_c_; ++k) {
-      const Vector x = p.row(k).transpose();
+      const Eigen::Vector3d x = point(p, k);
       const ObstaclePoint o = obstacle_->at(x.data(), t);
-      const double g = o.grad.head(d_).norm();
+      const double g = o.grad.norm();
       if (!(g > 0) || !std::isfinite(o.phi))
         throw NumericalError("obstacle (" + obstacle_->describe() + "): no normal at contact node " +
                              std::to_string(k) + " (zero or non-finite gradient)");
-      normals_.row(k) = -o.grad.head(d_).transpose() / g;
+      for (int j = 0; j < d_; ++j) normals_(k, j) = -o.grad(j) / g;
       q(k) = o.phi / g - normals_.row(k).dot(p_free.row(k) - p.row(k));
+      if (q(k) <= 0) candidate[k] = 1;
     }
-    // Z N and N' Z N with N block diagonal: d^2 n_c^2 work, not (d n_c)^2 n_c.
-    for (Index l = 0; l < n_c_; ++l)
-      ZN.col(l).noalias() = compliance.middleCols(l * d_, d_) * normals_.row(l).transpose();
-    for (Index k = 0; k < n_c_; ++k)
-      A.row(k).noalias() = scale * (normals_.row(k) * ZN.middleRows(k * d_, d_));
-    A = 0.5 * (A + A.transpose()).eval();  // symmetric to the last bit
+    LcpResult lcp;
+    for (bool grown = true; grown;) {
+      C.clear();
+      for (Index k = 0; k < n_c_; ++k)
+        if (candidate[k]) C.push_back(k);
+      const Index c = static_cast<Index>(C.size());
+      // Z N_C and N_C' Z N_C with N block diagonal: d m c and d c^2 work.
+      ZN.resize(m, c);
+      A.resize(c, c);
+      q_C.resize(c);
+      guess.resize(c);
+      for (Index b = 0; b < c; ++b) {
+        ZN.col(b).noalias() = compliance(C[b]) * normals_.row(C[b]).transpose();
+        q_C(b) = q(C[b]);
+        guess[b] = open_guess_[C[b]];
+      }
+      for (Index a = 0; a < c; ++a)
+        for (Index b = 0; b < c; ++b)
+          A(a, b) = scale * normals_.row(C[a]).dot(ZN.col(b).segment(C[a] * d_, d_));
+      A = 0.5 * (A + A.transpose()).eval();  // symmetric to the last bit
+      lcp = c > 0 ? LcpSolver::solve(A, q_C, guess) : LcpResult{};
+      shift.setZero();
+      if (c > 0) shift.noalias() = scale * (ZN * lcp.z);
+      grown = false;
+      for (Index k = 0; k < n_c_; ++k)
+        if (!candidate[k] && q(k) + normals_.row(k).dot(shift.segment(k * d_, d_)) < 0)
+          candidate[k] = 1, grown = true;
+    }
     // lcp.active: z = lambda = 0 (open contacts), the warm start of the
     // next iteration and step.
-    const LcpResult lcp = LcpSolver::solve(A, q, open_guess_);
-    open_guess_ = lcp.active;
-    lambda_ = lcp.z;
-    const Vector shift = scale * (ZN * lambda_);
+    lambda_.setZero(n_c_);
+    std::fill(open_guess_.begin(), open_guess_.end(), true);
+    for (std::size_t b = 0; b < C.size(); ++b) {
+      lambda_(C[b]) = lcp.z(b);
+      open_guess_[C[b]] = lcp.active[b];
+    }
     double move = 0;
     for (Index k = 0; k < n_c_; ++k)
       for (int j = 0; j < d_; ++j) {
@@ -159,7 +229,7 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
   // Against the true obstacle: every contact node outside it.
   const Matrix p0 = positions_of(u_);
   for (Index k = 0; k < n_c_; ++k) {
-    const Vector x = p0.row(k).transpose();
+    const Eigen::Vector3d x = point(p0, k);
     const double phi = obstacle_->at(x.data(), t_).phi;
     if (phi < -options_.frame_tolerance * size_)
       throw InputError("u: initial penetration at contact node " + std::to_string(k) +
@@ -170,12 +240,12 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
   const Vector r = load.F - problem_.K() * u_;
   Vector free_shift(n_c_ * d_);
   for (Index i = 0; i < n_c_ * d_; ++i) free_shift(i) = r(node_dofs_[i]);
-  free_shift = K_NN_inverse_ * free_shift;
+  free_shift = K_NN_.solve(free_shift).eval();
   Matrix p = p0, p_free = p0;
   for (Index k = 0; k < n_c_; ++k)
     for (int j = 0; j < d_; ++j) p_free(k, j) += free_shift(k * d_ + j);
   std::fill(open_guess_.begin(), open_guess_.end(), true);
-  solve_frame(p_free, K_NN_inverse_, 1.0, t_, p);
+  solve_frame(p_free, [this](Index node) { return static_columns(node); }, 1.0, t_, p);
   place_nodes(p, u_);
   for (Index k = 0; k < n_c_; ++k) active_[k] = lambda_(k) != 0;
   // a_O = M_OO^-1 (F - K u - C v)_O; the massless nodes' a_N are Newmark's
@@ -198,9 +268,9 @@ double FollowingFrameStepper::obstacle_power(const Vector& lambda, const Vector&
   double power = 0;
   for (Index k = 0; k < n_c_; ++k) {
     if (lambda(k) == 0) continue;
-    const Vector x = p.row(k).transpose();
+    const Eigen::Vector3d x = point(p, k);
     const ObstaclePoint o = obstacle_->at(x.data(), t);
-    power -= lambda(k) * o.phi_t / o.grad.head(d_).norm();
+    power -= lambda(k) * o.phi_t / o.grad.norm();
   }
   return power;
 }
@@ -214,18 +284,35 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   const Vector v_pred = v_ + (dt * (1 - options_.gamma)) * a_;
   Vector a = next.F - problem_.K() * u_hat;
   if (damped()) a -= C_ * v_pred;
-  S_->solve_in_place(a);  // the free step's acceleration
+  // The free step's acceleration on the contact nodes, (S^-1 r)_N: Y' y with
+  // y = L^-1 P r, or from the whole solve.
+  Vector free_N(n_c_ * d_);
+  if (keep_columns_) {
+    S_->forward_in_place(a);
+    free_N.noalias() = Y_.transpose() * a;
+  } else {
+    S_->solve_in_place(a);
+    for (Index i = 0; i < n_c_ * d_; ++i) free_N(i) = a(node_dofs_[i]);
+  }
   Matrix p_free = positions_of(u_hat);
   for (Index k = 0; k < n_c_; ++k)
-    for (int j = 0; j < d_; ++j) p_free(k, j) += bdt2 * a(node_dofs_[k * d_ + j]);
+    for (int j = 0; j < d_; ++j) p_free(k, j) += bdt2 * free_N(k * d_ + j);
   // The frame starts where the nodes are now.
   Matrix p = positions_of(u_);
   StepReport report;
-  report.active_set_iterations = solve_frame(p_free, Z_, bdt2, t1, p);
-  if ((lambda_.array() != 0.0).any()) {
+  report.active_set_iterations =
+      solve_frame(p_free, [this](Index node) { return Matrix(Z_.middleCols(node * d_, d_)); }, bdt2,
+                  t1, p);
+  // a = S^-1 (r - E_N N lambda).
+  Vector force(n_c_ * d_);
+  for (Index k = 0; k < n_c_; ++k)
+    for (int j = 0; j < d_; ++j) force(k * d_ + j) = lambda_(k) * normals_(k, j);
+  if (keep_columns_) {
+    if ((lambda_.array() != 0.0).any()) a.noalias() -= Y_ * force;
+    S_->backward_in_place(a);
+  } else if ((lambda_.array() != 0.0).any()) {
     Vector correction = Vector::Zero(problem_.size());
-    for (Index k = 0; k < n_c_; ++k)
-      for (int j = 0; j < d_; ++j) correction(node_dofs_[k * d_ + j]) = -lambda_(k) * normals_(k, j);
+    for (Index i = 0; i < n_c_ * d_; ++i) correction(node_dofs_[i]) = -force(i);
     S_->solve_in_place(correction);
     a += correction;
   }
@@ -238,10 +325,10 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   for (Index k = 0; k < n_c_; ++k) {
     active_[k] = lambda_(k) != 0;
     if (!active_[k]) continue;
-    Vector x(d_);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
     for (int j = 0; j < d_; ++j) x(j) = X_(k, j) + u_(node_dofs_[k * d_ + j]);
     const ObstaclePoint o = obstacle_->at(x.data(), t1);
-    const double g2 = o.grad.head(d_).squaredNorm();
+    const double g2 = o.grad.squaredNorm();
     for (int j = 0; j < d_; ++j) u_(node_dofs_[k * d_ + j]) -= o.phi * o.grad(j) / g2;
   }
   add_obstacle_work(0.5 * dt * (power_before + obstacle_power(lambda_, u_, t1)));
@@ -249,14 +336,18 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   return report;
 }
 
+Matrix FollowingFrameStepper::static_columns(Index node) const {
+  Matrix e = Matrix::Zero(n_c_ * d_, d_);
+  for (int j = 0; j < d_; ++j) e(node * d_ + j, j) = 1;
+  return K_NN_.solve(e);
+}
+
 void FollowingFrameStepper::boundary_relation(Vector& x, const Vector& h) const {
-  // Free part: K_NN x_N = -(K_NO x_O), the contact rows with x_N zeroed.
-  Vector y = x;
-  for (Index i : node_dofs_) y(i) = 0;
-  const Vector Ky = problem_.K() * y;
-  Vector r(n_c_ * d_);
-  for (Index i = 0; i < n_c_ * d_; ++i) r(i) = -Ky(node_dofs_[i]);
-  Vector x_N = K_NN_inverse_ * r;
+  // Free part: K_NN x_N = -(K_NO x_O) = K_NN x_N - (K x)_N, from the contact
+  // rows of K alone (K_N: a few rows, not a product with the whole K).
+  Vector x_N(n_c_ * d_);
+  for (Index i = 0; i < n_c_ * d_; ++i) x_N(i) = x(node_dofs_[i]);
+  x_N = K_NN_.solve(Vector(K_NN_matrix_ * x_N - K_N_ * x));
   // Closed contacts: n_k . x_k = h_k, by a multiplier per closed node.
   std::vector<Index> closed;
   for (Index k = 0; k < n_c_; ++k)
@@ -265,7 +356,7 @@ void FollowingFrameStepper::boundary_relation(Vector& x, const Vector& h) const 
     const Index m = static_cast<Index>(closed.size());
     Matrix KN(n_c_ * d_, m);  // K_NN^-1 N_A
     for (Index c = 0; c < m; ++c)
-      KN.col(c) = K_NN_inverse_.middleCols(closed[c] * d_, d_) * normals_.row(closed[c]).transpose();
+      KN.col(c) = static_columns(closed[c]) * normals_.row(closed[c]).transpose();
     Matrix G(m, m);
     Vector b(m);
     for (Index a = 0; a < m; ++a) {
@@ -287,26 +378,26 @@ void FollowingFrameStepper::boundary_rates(double t) {
   const double step = 1e-6 * size_;
   for (Index k = 0; k < n_c_; ++k) {
     if (!active_[k]) continue;
-    const Vector x = p.row(k).transpose();
+    const Eigen::Vector3d x = point(p, k);
     const ObstaclePoint o = obstacle_->at(x.data(), t);
-    const double g = o.grad.head(d_).norm();
-    normals_.row(k) = -o.grad.head(d_).transpose() / g;
+    const double g = o.grad.norm();
+    for (int j = 0; j < d_; ++j) normals_(k, j) = -o.grad(j) / g;
     h_v(k) = o.phi_t / g;
   }
   boundary_relation(v_, h_v);
   for (Index k = 0; k < n_c_; ++k) {
     if (!active_[k]) continue;
-    const Vector x = p.row(k).transpose();
-    Vector vk(d_);
+    const Eigen::Vector3d x = point(p, k);
+    Eigen::Vector3d vk = Eigen::Vector3d::Zero();
     for (int j = 0; j < d_; ++j) vk(j) = v_(node_dofs_[k * d_ + j]);
     const double speed = vk.norm();
     double curvature_term = 0;
     if (speed > 0) {
-      const Vector e = vk / speed;
-      const Vector xp = x + step * e, xm = x - step * e;
+      const Eigen::Vector3d e = vk / speed;
+      const Eigen::Vector3d xp = x + step * e, xm = x - step * e;
       const ObstaclePoint op = obstacle_->at(xp.data(), t), om = obstacle_->at(xm.data(), t);
       // v' H v + 2 grad phi_t . v with grad phi_t . e = (phi_t(x+) - phi_t(x-)) / 2 step.
-      curvature_term = speed * speed * e.dot((op.grad - om.grad).head(d_)) / (2 * step) +
+      curvature_term = speed * speed * (op.grad - om.grad).dot(e) / (2 * step) +
                        2 * speed * (op.phi_t - om.phi_t) / (2 * step);
     }
     double phi_tt = 0;
@@ -316,7 +407,7 @@ void FollowingFrameStepper::boundary_rates(double t) {
                (2 * tau);
     }
     const ObstaclePoint o = obstacle_->at(x.data(), t);
-    h_a(k) = (phi_tt + curvature_term) / o.grad.head(d_).norm();
+    h_a(k) = (phi_tt + curvature_term) / o.grad.norm();
   }
   boundary_relation(a_, h_a);
 }
@@ -325,7 +416,7 @@ Vector FollowingFrameStepper::gaps() const {
   const Matrix p = positions_of(u_);
   Vector phi(n_c_);
   for (Index k = 0; k < n_c_; ++k) {
-    const Vector x = p.row(k).transpose();
+    const Eigen::Vector3d x = point(p, k);
     phi(k) = obstacle_->at(x.data(), t_).phi;
   }
   return phi;
@@ -335,9 +426,9 @@ Matrix FollowingFrameStepper::normals() const {
   const Matrix p = positions_of(u_);
   Matrix n(n_c_, d_);
   for (Index k = 0; k < n_c_; ++k) {
-    const Vector x = p.row(k).transpose();
+    const Eigen::Vector3d x = point(p, k);
     const ObstaclePoint o = obstacle_->at(x.data(), t_);
-    n.row(k) = -o.grad.head(d_).transpose() / o.grad.head(d_).norm();
+    for (int j = 0; j < d_; ++j) n(k, j) = -o.grad(j) / o.grad.norm();
   }
   return n;
 }

@@ -19,14 +19,18 @@
 // and taking p^{i+1} from its lambda. Each iteration is dense work on the
 // contact set (the n_c x n_c matrix N' Z N and its LCP), no sparse solve; the
 // converged step costs one solve for S^-1 r and, when contact forces act, one
-// for S^-1 E_N N lambda. At the fixed point the closed contacts satisfy
+// for S^-1 E_N N lambda (or, where Y = L^-1 P E_N is small, one substitution
+// each way and products with Y). At the fixed point the closed contacts satisfy
 // phi(p) = 0 up to the square of the last update times the curvature.
 #pragma once
 
+#include <Eigen/SparseCholesky>
+#include <functional>
 #include <memory>
 #include <vector>
 
 #include "contact_problem.hpp"
+#include "massless_newmark_stepper.hpp"
 #include "obstacle/rigid_obstacle.hpp"
 #include "spd_inverse.hpp"
 #include "stepper.hpp"
@@ -39,6 +43,9 @@ struct FollowingFrameOptions {
   /// frame_tolerance times the body size between two iterations.
   double frame_tolerance = 1e-12;
   int max_frame_iterations = 50;
+  /// Whether Y = L^-1 P E_N is kept (by its size, or forced: both step
+  /// alike to round-off; the tests compare them).
+  ContactColumns columns = ContactColumns::kAuto;
 };
 
 /// The stepping protocol of Stepper (initialize, step, restore, energies);
@@ -85,12 +92,17 @@ class FollowingFrameStepper final : public Stepper {
  private:
   /// Positions of the contact nodes (n_c x d, row k = x_k + u_k) for u.
   Matrix positions_of(const Vector& u) const;
+  /// The d columns of a compliance (Z, or K_NN^-1 at the start) for the
+  /// components of one contact node.
+  using NodeColumns = std::function<Matrix(Index node)>;
   /// The fixed point of the header for free positions p_free and the
   /// compliance `scale` * compliance at time t, from the linearisation point
   /// p (updated in place to the converged positions); lambda_ and normals_
   /// set. Returns the number of iterations.
-  int solve_frame(const Matrix& p_free, const Matrix& compliance, double scale, double t,
+  int solve_frame(const Matrix& p_free, const NodeColumns& compliance, double scale, double t,
                   Matrix& p);
+  /// K_NN^-1 E_node: the static compliance of one node's components.
+  Matrix static_columns(Index node) const;
   /// u <- u + (p - positions_of(u)) on the contact nodes.
   void place_nodes(const Matrix& p, Vector& u) const;
   /// -lambda . g' at time t, g' = (d phi / dt) / |grad phi| at each node.
@@ -117,7 +129,10 @@ class FollowingFrameStepper final : public Stepper {
   SparseMatrix M_;                // the massless mass M'
   std::unique_ptr<CholeskyInverse> S_;
   Matrix Z_;                      // E_N' S^-1 E_N
-  Matrix K_NN_inverse_;           // of the static start
+  bool keep_columns_ = false;     // Y kept (constructor)
+  SparseMatrix Y_;                // L^-1 P E_N, if kept
+  SparseMatrix K_NN_matrix_, K_N_;            // the contact nodes' block and rows of K
+  Eigen::SimplicialLLT<SparseMatrix> K_NN_;  // K_NN's factor
   Vector lambda_;
   Matrix normals_;                // n_c x d, those lambda_ acts along
   std::vector<bool> open_guess_;  // the LCP's warm start: lambda = 0

@@ -156,6 +156,7 @@ class DistanceObstacle final : public RigidObstacle {
   }
   ObstaclePoint at(const double* x, double t) const override {
     ObstaclePoint p = phi_(x, t);
+    for (int i = dim(); i < 3; ++i) p.grad(i) = 0;
     if (!moving_) p.phi_t = 0;
     return p;
   }

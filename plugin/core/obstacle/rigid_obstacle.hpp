@@ -39,7 +39,7 @@ struct TimeLaw {
 /// What an obstacle says about one point x at time t.
 struct ObstaclePoint {
   double phi = 0;              ///< signed distance (or a function with the same zero set)
-  Eigen::Vector3d grad{0, 0, 0};  ///< grad phi (the first dim entries)
+  Eigen::Vector3d grad{0, 0, 0};  ///< grad phi (the first dim entries; the others 0)
   double phi_t = 0;            ///< d phi / dt at fixed x: the obstacle's motion
 };
 
