@@ -148,8 +148,13 @@ int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& 
   // checked; any that does not joins them and the LCP is solved again, so
   // the result is the LCP's on all nodes, at a cost that grows with the
   // candidates, not with n_c (header).
+  // Both the candidates and the LCP's warm start come from the state's
+  // closed contacts (active_), so that a restored state steps on bit for bit.
   std::vector<char> candidate(n_c_, 0);
-  for (Index k = 0; k < n_c_; ++k) candidate[k] = !open_guess_[k];
+  for (Index k = 0; k < n_c_; ++k) {
+    candidate[k] = active_[k];
+    open_guess_[k] = !active_[k];
+  }
   std::vector<Index> C;
   std::vector<bool> guess;
   Matrix ZN, A;
@@ -244,7 +249,7 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
   Matrix p = p0, p_free = p0;
   for (Index k = 0; k < n_c_; ++k)
     for (int j = 0; j < d_; ++j) p_free(k, j) += free_shift(k * d_ + j);
-  std::fill(open_guess_.begin(), open_guess_.end(), true);
+  std::fill(active_.begin(), active_.end(), false);
   solve_frame(p_free, [this](Index node) { return static_columns(node); }, 1.0, t_, p);
   place_nodes(p, u_);
   for (Index k = 0; k < n_c_; ++k) active_[k] = lambda_(k) != 0;

@@ -285,6 +285,7 @@ TEST(FollowingFrame, RestartIsExactAcrossFrameUpdates) {
   FrameRun whole(nbm_test::disc(0.5, c, 5, 1, 1e4, 0.3, 10), bowl(), 1e-3);
   FrameRun second(nbm_test::disc(0.5, c, 5, 1, 1e4, 0.3, 10), bowl(), 1e-3);
   for (int n = 0; n < 150; ++n) whole.step();
+  for (int n = 0; n < 37; ++n) second.step();  // a history of its own, then the restart
   const auto& s = *whole.stepper;
   second.stepper->restore(s.u(), s.v(), s.a(), s.active(), whole.body.a.F, s.time());
   for (int n = 0; n < 150; ++n) whole.step(), second.step();
