@@ -74,6 +74,35 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
       node_dofs_[k * d_ + j] = problem.internal_index(contacts.dof(k, j));
       X_(k, j) = positions(contacts.dof(k, j), j);
     }
+  // The nodes outside the contact set, watched for crossings: the free dofs
+  // grouped by position, d per node, components in the order of their dofs.
+  {
+    std::vector<char> skip(problem.n_dofs(), 0);
+    for (Index k = 0; k < n_c_; ++k)
+      for (int j = 0; j < d_; ++j) skip[contacts.dof(k, j)] = 1;
+    std::vector<Index> order;
+    for (Index i = 0; i < problem.n_dofs(); ++i)
+      if (!skip[i] && problem.internal_index(i) >= 0) order.push_back(i);
+    const auto row_less = [&](Index a, Index b) {
+      for (int j = 0; j < d_; ++j)
+        if (positions(a, j) != positions(b, j)) return positions(a, j) < positions(b, j);
+      return a < b;
+    };
+    std::sort(order.begin(), order.end(), row_less);
+    std::vector<std::vector<Index>> nodes;
+    for (std::size_t a = 0; a < order.size();) {
+      std::size_t b = a + 1;
+      while (b < order.size() && positions.row(order[b]) == positions.row(order[a])) ++b;
+      if (static_cast<int>(b - a) == d_) nodes.emplace_back(order.begin() + a, order.begin() + b);
+      a = b;
+    }
+    watch_X_.resize(static_cast<Index>(nodes.size()), d_);
+    for (std::size_t w = 0; w < nodes.size(); ++w)
+      for (int j = 0; j < d_; ++j) {
+        watch_dofs_.push_back(problem.internal_index(nodes[w][j]));
+        watch_X_(static_cast<Index>(w), j) = positions(nodes[w][j], j);
+      }
+  }
   size_ = (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
   if (!(size_ > 0)) size_ = 1;
 
@@ -231,9 +260,11 @@ int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& 
 }
 
 void FollowingFrameStepper::start(const ContactLoad& load) {
-  // Against the true obstacle: every contact node outside it.
+  // Against the true obstacle: every contact node outside it (a state a run
+  // reached, continued under a new contact set, may bring nodes that crossed
+  // it: they are pushed out by the relation below).
   const Matrix p0 = positions_of(u_);
-  for (Index k = 0; k < n_c_; ++k) {
+  for (Index k = 0; k < n_c_ && fresh_start(); ++k) {
     const Eigen::Vector3d x = point(p0, k);
     const double phi = obstacle_->at(x.data(), t_).phi;
     if (phi < -options_.frame_tolerance * size_)
@@ -338,6 +369,7 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   }
   add_obstacle_work(0.5 * dt * (power_before + obstacle_power(lambda_, u_, t1)));
   if (!damped()) boundary_rates(t1);
+  report.crossings = count_crossings(t1);
   return report;
 }
 
@@ -415,6 +447,17 @@ void FollowingFrameStepper::boundary_rates(double t) {
     h_a(k) = (phi_tt + curvature_term) / o.grad.norm();
   }
   boundary_relation(a_, h_a);
+}
+
+int FollowingFrameStepper::count_crossings(double t) const {
+  int crossings = 0;
+  const double tolerance = options_.frame_tolerance * size_;
+  for (Index w = 0; w < watch_X_.rows(); ++w) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int j = 0; j < d_; ++j) x(j) = watch_X_(w, j) + u_(watch_dofs_[w * d_ + j]);
+    if (obstacle_->at(x.data(), t).phi < -tolerance) ++crossings;
+  }
+  return crossings;
 }
 
 Vector FollowingFrameStepper::gaps() const {

@@ -51,7 +51,10 @@ struct FollowingFrameOptions {
 /// The stepping protocol of Stepper (initialize, step, restore, energies);
 /// the Obstacle (gap vector) of a ContactLoad is not used: the obstacle is
 /// the RigidObstacle given here. StepReport::active_set_iterations counts the
-/// frame iterations of the step.
+/// frame iterations of the step, StepReport::crossings the nodes outside the
+/// contact set that end the step inside the obstacle: every other node whose
+/// d dofs share one position (positions), components in the order of their
+/// dofs, is checked at every step (one distance per node).
 class FollowingFrameStepper final : public Stepper {
  public:
   /// problem: the contact nodes in the user's axes (ContactSet::in_user_axes)
@@ -105,6 +108,8 @@ class FollowingFrameStepper final : public Stepper {
   Matrix static_columns(Index node) const;
   /// u <- u + (p - positions_of(u)) on the contact nodes.
   void place_nodes(const Matrix& p, Vector& u) const;
+  /// Nodes outside the contact set inside the obstacle at time t (above).
+  int count_crossings(double t) const;
   /// -lambda . g' at time t, g' = (d phi / dt) / |grad phi| at each node.
   double obstacle_power(const Vector& lambda, const Vector& u, double t) const;
   /// v_N and a_N from the nodal boundary relation differentiated in time
@@ -125,6 +130,9 @@ class FollowingFrameStepper final : public Stepper {
   int d_;
   std::vector<Index> node_dofs_;  // internal index of component j of node k at k d + j
   Matrix X_;                      // reference positions of the contact nodes (n_c x d)
+  // The other nodes: internal dofs (d per node, by component) and positions.
+  std::vector<Index> watch_dofs_;
+  Matrix watch_X_;
   double size_ = 1;
   SparseMatrix M_;                // the massless mass M'
   std::unique_ptr<CholeskyInverse> S_;

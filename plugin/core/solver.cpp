@@ -444,7 +444,7 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   ++impl_->steps;
   if (r.fallback) ++impl_->fallbacks;
   impl_->publish(u, v);
-  return {r.active_set_iterations, r.fallback};
+  return {r.active_set_iterations, r.fallback, r.crossings};
 }
 
 void Solver::replace_contacts(const ContactDescription& contact, std::vector<double>& u,

@@ -109,6 +109,9 @@ struct ContactDescription {
 struct StepInfo {
   int active_set_iterations = 0;
   bool fallback = false;
+  /// With the option `obstacle`: nodes outside the contact set found inside
+  /// the obstacle at the step's end (to add to the contact set).
+  int crossings = 0;
 };
 
 class Solver {

@@ -109,7 +109,9 @@ void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, d
   obstacle_work_ = 0;
   dissipated_ = 0;
   a_.resize(n);
+  fresh_start_ = check;
   start(load);
+  fresh_start_ = true;
   initialized_ = true;
 }
 

@@ -60,6 +60,9 @@ struct ContactLoad {
 struct StepReport {
   int active_set_iterations = 0;  ///< linear solves with a guessed active set
   bool fallback = false;          ///< cycling was detected and resolved (§5)
+  /// Nodes outside the contact set found inside the obstacle at the step's
+  /// end (schemes that know the obstacle's geometry; method.md §10).
+  int crossings = 0;
 };
 
 class Stepper {
@@ -156,6 +159,9 @@ class Stepper {
   Vector gaps(const Vector& u, const Vector& g) const;
   /// Throws InputError if u penetrates the obstacle at gaps g beyond round-off.
   void check_penetration(const Vector& u, const Vector& g, const char* what) const;
+  /// True while start() runs for initialize() (a new state), false for
+  /// continue_from() (a state a run reached, under another contact set).
+  bool fresh_start() const { return fresh_start_; }
   /// Adds to the obstacle's work a scheme that accounts for it itself (a
   /// contact frame that follows the body, whose obstacle is not a gap vector).
   void add_obstacle_work(double work) { obstacle_work_ += work; }
@@ -182,6 +188,7 @@ class Stepper {
 
   double obstacle_work_ = 0;
   double dissipated_ = 0;
+  bool fresh_start_ = true;
   // Workspaces of a step: the gap change and the reactions at both ends of a
   // step of a moving obstacle; the mid-step velocity and C times it.
   Vector dg_, lambda_old_, lambda_new_, v_mid_, Cv_;

@@ -22,10 +22,16 @@ struct NbmHandle {
   nbm::Solver* solver;
   nbm::OrbitReport* orbit;     // the last periodic orbit (orbit_functions.cpp)
   nbm::OrbitReport* previous;  // the one before
+  // Nodes outside the contact set inside the obstacle (obstacle=): the last
+  // step's count, whether a message was printed, and crossings = "error".
+  long crossings;
+  bool crossings_reported, crossings_fatal;
   void init() {
     solver = nullptr;
     orbit = nullptr;
     previous = nullptr;
+    crossings = 0;
+    crossings_reported = crossings_fatal = false;
   }
   void destroy() {
     delete orbit;  // they refer to the solver's problem: go first

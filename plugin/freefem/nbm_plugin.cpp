@@ -19,7 +19,9 @@
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 6 entries, e[5] dissipated
 //   NBMObstacle bowl("circle", c, radius = R, side = "inside");   // obstacle_functions.cpp
 //   NBM F(M, K, cdofs, normals, gaps, dt = 1e-3, mass = "redistributed",
-//         positions = xy, obstacle = bowl);  // held exactly, frame following the body
+//         positions = xy, obstacle = bowl,  // held exactly, frame following the body
+//         crossings = "warn");               // or "error": other nodes inside the obstacle
+//   long c = nbmCrossings(F);              // those nodes at the last nbmStep
 //
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
@@ -33,7 +35,7 @@ namespace {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 12;
+  static const int n_name_param = 13;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -73,9 +75,18 @@ class NbmConstruct : public E_F0mps {
     const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*K)(s)), "K");
     // on()'s conventions: the dofs with a tgv penalty join fixed=.
     opt.fixed = guarded("NBM", [&] { return dirichlet_dofs(Mc, Kc, std::move(opt.fixed)); });
+    bool fatal = false;
+    if (nargs[12]) {
+      const string mode = *GetAny<string*>((*nargs[12])(s));
+      if (mode != "warn" && mode != "error")
+        fail("NBM: crossings: \"" + mode + "\", expected \"warn\" or \"error\"");
+      if (!opt.obstacle) fail("NBM: crossings: given without obstacle=, which it watches");
+      fatal = mode == "error";
+    }
     nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
     h->destroy();  // the old solver and any orbit computed on it
     h->solver = solver;
+    h->crossings_fatal = fatal;
     return h;
   }
   operator aType() const override { return atype<NbmHandle*>(); }
@@ -94,6 +105,7 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"rayleighK", &typeid(double)},
     {"damping", &typeid(Matrice_Creuse<double>*)},
     {"obstacle", &typeid(ObstacleHandle*)},
+    {"crossings", &typeid(string*)},
 };
 
 class NbmConstructOp : public OneOperator {
@@ -143,6 +155,16 @@ long nbm_step(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
   const nbm::StepInfo info = guarded("nbmStep", [&] { return S.step(uu, vv, FF); });
   assign(u, uu);
   assign(v, vv);
+  h->crossings = info.crossings;
+  if (info.crossings > 0 && (h->crossings_fatal || !h->crossings_reported)) {
+    const std::string what =
+        "nbmStep: " + std::to_string(info.crossings) + " node(s) outside the contact set inside "
+        "the obstacle at t = " + std::to_string(S.time()) + "; add them to the contact nodes "
+        "(a contact description that includes them, nbmReplaceContacts)";
+    if (h->crossings_fatal) fail(what + " [crossings = \"error\"]");
+    cout << "nbm: " << what << " (reported once; nbmCrossings(S) counts them at every step)" << endl;
+    h->crossings_reported = true;
+  }
   return info.active_set_iterations;
 }
 
@@ -261,6 +283,10 @@ double nbm_time(NbmHandle* const& h) { return solver_of(h, "nbmTime").time(); }
 double nbm_critical_dt(NbmHandle* const& h) { return solver_of(h, "nbmCriticalDt").critical_dt(); }
 long nbm_fallbacks(NbmHandle* const& h) { return solver_of(h, "nbmFallbacks").fallbacks(); }
 long nbm_n_contact(NbmHandle* const& h) { return solver_of(h, "nbmContactNodes").n_contact(); }
+long nbm_crossings(NbmHandle* const& h) {
+  solver_of(h, "nbmCrossings");
+  return h->crossings;
+}
 
 void Load_Init() {
   load_obstacle_functions();  // NBMObstacle, which NBM's obstacle= takes
@@ -291,6 +317,7 @@ void Load_Init() {
   Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
   Global.Add("nbmContactNodes", "(", new OneOperator1_<long, H>(nbm_n_contact));
+  Global.Add("nbmCrossings", "(", new OneOperator1_<long, H>(nbm_crossings));
   load_orbit_functions();
   load_backbone_functions();
 }

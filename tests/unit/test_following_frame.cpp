@@ -4,6 +4,7 @@
 // the scheme's accuracy and exact restarts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -323,6 +324,48 @@ TEST(FollowingFrame, KeptAndRecomputedContactColumnsStepAlike) {
   }
   EXPECT_GT(closed_steps, 100);
   EXPECT_LT(worst, 1e-10);
+}
+
+TEST(FollowingFrame, NodesOutsideTheContactSetCrossingAreCountedAndCanBeAdded) {
+  // The disc at 60 degrees up the bowl touches it 30 degrees below its
+  // horizontal; with only the boundary nodes more than 44 degrees below it as
+  // contact nodes, the others sink into the bowl: counted at every step.
+  const double r = 0.5, rho = 0.75, theta0 = pi / 3;
+  const Eigen::Vector2d c(rho * std::sin(theta0), -rho * std::cos(theta0));
+  auto body = nbm_test::disc(r, c, 6, 1, 1e4, 0.3, 10);
+  const long n = body.a.K.rows();
+  std::vector<nbm::Index> all(body.contact_dofs.begin(), body.contact_dofs.end()), low;
+  for (std::size_t i = 0; i < all.size(); i += 2)
+    if (body.positions(all[i], 1) < c(1) - 0.7 * r) low.insert(low.end(), {all[i], all[i + 1]});
+  std::shared_ptr<const nbm::RigidObstacle> bowl =
+      nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside);
+  const nbm::ContactProblem partial(body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, low, 2),
+                                    std::vector<nbm::Index>{});
+  nbm::FollowingFrameStepper s(partial, body.a.M, body.positions, bowl, 1e-3);
+  const Eigen::VectorXd zero = Eigen::VectorXd::Zero(n);
+  s.initialize(zero, zero, body.a.F);
+  int crossings = 0;
+  for (int k = 0; k < 20; ++k) crossings = s.step(body.a.F).crossings;
+  // Independently: the boundary nodes outside the partial set inside the bowl.
+  int inside = 0;
+  for (std::size_t i = 0; i < all.size(); i += 2) {
+    if (std::find(low.begin(), low.end(), all[i]) != low.end()) continue;
+    const Eigen::Vector2d x(body.positions(all[i], 0) + s.u()(all[i]),
+                            body.positions(all[i + 1], 1) + s.u()(all[i + 1]));
+    inside += x.norm() > 1.25 * (1 + 1e-12);
+  }
+  EXPECT_GT(inside, 0);
+  EXPECT_EQ(crossings, inside);
+  // Added (one setup): the whole boundary, continued from that state.
+  const nbm::ContactProblem whole(body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, all, 2),
+                                  std::vector<nbm::Index>{});
+  nbm::FollowingFrameStepper t(whole, body.a.M, body.positions, bowl, 1e-3);
+  const nbm::Obstacle rest = nbm::Obstacle::at_rest(whole.gaps());
+  t.continue_from(s.u(), s.v(), nbm::ContactLoad{body.a.F, rest}, s.time());
+  for (int k = 0; k < 50; ++k) {
+    EXPECT_EQ(t.step(body.a.F).crossings, 0);
+    ASSERT_GE(t.gaps().minCoeff(), -1e-12 * t.body_size());
+  }
 }
 
 TEST(FollowingFrame, BadInputNamed) {

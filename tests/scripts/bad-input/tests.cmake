@@ -170,4 +170,6 @@ nbm_bad_follow_case(follow-not-constructed [=[NBM: obstacle: the NBMObstacle was
 nbm_bad_follow_case(follow-dimension [=[NBM: obstacle: dimension 3, expected 2 \(the contact nodes' dofs\)]=])
 nbm_bad_follow_case(follow-gap-arrays [=[nbmObstacle: obstacle: given as the option obstacle=, which moves by its own law]=])
 nbm_bad_follow_case(follow-initial-penetration [=[nbmInit: u: initial penetration at contact node [0-9]+ \(distance -[0-9.e-]+ to the circle of radius 1.1]=])
+nbm_bad_follow_case(follow-crossings-error [=[nbmStep: [0-9]+ node\(s\) outside the contact set inside the obstacle at t = .*add them to the contact nodes.*crossings = "error"]=])
+nbm_bad_follow_case(follow-crossings-mode [=[NBM: crossings: "ignore", expected "warn" or "error"]=])
 nbm_bad_follow_case(follow-distance-size [=[nbmObstacleDistance: x: 3 coordinates, expected 2 \(the obstacle's dimension\)]=])
