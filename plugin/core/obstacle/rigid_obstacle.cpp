@@ -112,13 +112,25 @@ class RoundObstacle final : public RigidObstacle {
     if (axis.size()) axis_ = unit(axis, kind + " axis");
   }
   ObstaclePoint at(const double* x, double t) const override {
+    // Fixed-size arithmetic (no heap): called per node and frame iteration.
     const int d = dim();
-    const Vector c = translation_.at(center_, t);
-    Vector r = Eigen::Map<const Vector>(x, d) - c;
-    if (axis_.size()) r -= r.dot(axis_) * axis_;
+    Eigen::Vector3d c = Eigen::Vector3d::Zero(), r = Eigen::Vector3d::Zero(), v = Eigen::Vector3d::Zero();
+    const bool moves = translation_.direction.size() != 0;
+    const double w = moves ? translation_.law.value(t) : 0, w_rate = moves ? translation_.law.first(t) : 0;
+    for (int i = 0; i < d; ++i) {
+      const double e_i = moves ? translation_.direction(i) : 0;
+      c(i) = center_(i) + w * e_i;
+      v(i) = w_rate * e_i;
+      r(i) = x[i] - c(i);
+    }
+    if (axis_.size()) {
+      double along = 0;
+      for (int i = 0; i < d; ++i) along += r(i) * axis_(i);
+      for (int i = 0; i < d; ++i) r(i) -= along * axis_(i);
+    }
     const double distance = r.norm();
     // The unit vector from the centre (axis) to x; any direction at the centre.
-    Vector e = Vector::Zero(d);
+    Eigen::Vector3d e = Eigen::Vector3d::Zero();
     if (distance > 0)
       e = r / distance;
     else
@@ -126,11 +138,9 @@ class RoundObstacle final : public RigidObstacle {
     const double s = side_ == Side::kOutside ? 1.0 : -1.0;
     ObstaclePoint p;
     p.phi = s * (distance - (R_ + radius_change_.value(t)));
-    for (int i = 0; i < d; ++i) p.grad(i) = s * e(i);
+    p.grad = s * e;
     // d|r|/dt = -e . c'(t) at a fixed x.
-    const Vector cv = translation_.velocity(t);
-    const double distance_rate = cv.size() ? -e.dot(cv) : 0.0;
-    p.phi_t = s * (distance_rate - radius_change_.first(t));
+    p.phi_t = s * (-e.dot(v) - radius_change_.first(t));
     return p;
   }
   bool fixed() const override { return !translation_.moves() && radius_change_.constant(); }
