@@ -57,11 +57,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s NX NY STEPS\n", argv[0]);
     return 2;
   }
-  nbm_bench::Plate p;
-  p.nx = std::atoi(argv[1]);
-  p.ny = std::atoi(argv[2]);
-  p.W = 0.02 * p.nx;
-  p.H = 0.02 * p.ny;
+  const nbm_bench::Plate p = nbm_bench::Plate::of_cells(std::atoi(argv[1]), std::atoi(argv[2]));
   const int steps = std::atoi(argv[3]);
   const nbm_bench::Assembled a = nbm_bench::assemble(p);
   const Eigen::MatrixXd X = nbm_bench::dof_positions(p);

@@ -59,6 +59,15 @@ Plate Plate::with_dofs(int order, double dofs, int aspect) {
   return p;
 }
 
+Plate Plate::of_cells(int nx, int ny, double cell) {
+  Plate p;
+  p.nx = nx;
+  p.ny = ny;
+  p.W = cell * nx;
+  p.H = cell * ny;
+  return p;
+}
+
 Assembled assemble(const Plate& p) {
   const double lam = p.E * p.nu / ((1 + p.nu) * (1 - 2 * p.nu));
   const double mu = p.E / (2 * (1 + p.nu));

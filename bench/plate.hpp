@@ -31,6 +31,8 @@ struct Plate {
   /// Mesh with about `dofs` degrees of freedom, square cells and aspect
   /// ratio W/H = `aspect` (80: the 2000 x 25 strip of issue 14 at 1e5 P1 dofs).
   static Plate with_dofs(int order, double dofs, int aspect = 2);
+  /// P1 mesh of nx x ny square cells of side `cell` (the hand-run tools').
+  static Plate of_cells(int nx, int ny, double cell = 0.02);
 };
 
 struct Assembled {

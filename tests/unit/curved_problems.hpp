@@ -119,11 +119,7 @@ inline Assembled assemble_tetrahedra(const std::vector<Eigen::Vector3d>& x,
     }
     a.mass += rho * volume;
   }
-  a.M.resize(n, n);
-  a.K.resize(n, n);
-  a.M.setFromTriplets(m.begin(), m.end());
-  a.K.setFromTriplets(k.begin(), k.end());
-  a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
+  set_matrices(a, n, m, k);
   return a;
 }
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <tuple>
 
 #include "contact_problem.hpp"
 #include "curved_problems.hpp"
@@ -295,17 +296,28 @@ TEST(FollowingFrame, RestartIsExactAcrossFrameUpdates) {
   EXPECT_EQ(whole.stepper->time(), second.stepper->time());
 }
 
+// A disc (r = 0.5, E = 1e4) centred at c with its whole boundary as contact
+// nodes, and the bowl of radius 1.25 around the origin.
+struct DiscAndBowl {
+  CurvedBody body;
+  nbm::ContactProblem problem;
+  std::shared_ptr<const nbm::RigidObstacle> bowl;
+  DiscAndBowl(const Eigen::Vector2d& c, int rings)
+      : body(nbm_test::disc(0.5, c, rings, 1, 1e4, 0.3, 10)),
+        problem(body.a.M, body.a.K,
+                nbm::ContactSet::in_user_axes(
+                    body.a.K.rows(),
+                    std::vector<nbm::Index>(body.contact_dofs.begin(), body.contact_dofs.end()), 2),
+                std::vector<nbm::Index>{}),
+        bowl(nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside)) {}
+};
+
 TEST(FollowingFrame, KeptAndRecomputedContactColumnsStepAlike) {
   // Y = L^-1 P E_N kept (substitutions and products with Y) or not (whole
   // solves): the same steps to round-off, through contact changes.
-  const Eigen::Vector2d c(0.75 * std::sin(0.5), -0.75 * std::cos(0.5));
-  auto body = nbm_test::disc(0.5, c, 5, 1, 1e4, 0.3, 10);
+  const DiscAndBowl setup(Eigen::Vector2d(0.75 * std::sin(0.5), -0.75 * std::cos(0.5)), 5);
+  const auto& [body, problem, bowl] = std::tie(setup.body, setup.problem, setup.bowl);
   const long n = body.a.K.rows();
-  std::vector<nbm::Index> dofs(body.contact_dofs.begin(), body.contact_dofs.end());
-  const nbm::ContactProblem problem(body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, dofs, 2),
-                                    std::vector<nbm::Index>{});
-  std::shared_ptr<const nbm::RigidObstacle> bowl =
-      nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside);
   nbm::FollowingFrameOptions kept, recomputed;
   kept.columns = nbm::ContactColumns::kKept;
   recomputed.columns = nbm::ContactColumns::kRecomputed;
@@ -369,13 +381,10 @@ TEST(FollowingFrame, NodesOutsideTheContactSetCrossingAreCountedAndCanBeAdded) {
 }
 
 TEST(FollowingFrame, BadInputNamed) {
-  const auto body = nbm_test::disc(0.5, Eigen::Vector2d(0, 0), 2, 1, 1e4, 0.3, 10);
+  const DiscAndBowl setup(Eigen::Vector2d(0, 0), 2);
+  const auto& [body, problem, bowl] = std::tie(setup.body, setup.problem, setup.bowl);
   const long n = body.a.K.rows();
-  std::vector<nbm::Index> dofs(body.contact_dofs.begin(), body.contact_dofs.end());
-  const nbm::ContactProblem problem(body.a.M, body.a.K, nbm::ContactSet::in_user_axes(n, dofs, 2),
-                                    std::vector<nbm::Index>{});
-  std::shared_ptr<const nbm::RigidObstacle> bowl =
-      nbm::make_ball(Eigen::Vector2d(0, 0), 1.25, nbm::Side::kInside);
+  const std::vector<nbm::Index> dofs(body.contact_dofs.begin(), body.contact_dofs.end());
   const auto expect_throw_with = nbm_test::expect_throw_with<nbm::InputError>;
   const auto make = [&](const nbm::ContactProblem& p, const Eigen::MatrixXd& X,
                         std::shared_ptr<const nbm::RigidObstacle> o, double dt,

@@ -88,6 +88,17 @@ struct Plate {
   }
 };
 
+/// M and K of size n from their element triplets, K symmetric to the last
+/// bit (the element matrices are, up to round-off).
+inline void set_matrices(Assembled& a, int n, const std::vector<Trip>& m,
+                         const std::vector<Trip>& k) {
+  a.M.resize(n, n);
+  a.K.resize(n, n);
+  a.M.setFromTriplets(m.begin(), m.end());
+  a.K.setFromTriplets(k.begin(), k.end());
+  a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
+}
+
 /// P1 plane-strain elasticity on triangles (counter-clockwise node lists):
 /// consistent mass, stiffness and the load of gravity g along the unit
 /// vector gdir. Node i has dofs 2 i, 2 i + 1.
@@ -129,12 +140,7 @@ inline Assembled assemble_triangles(const std::vector<Eigen::Vector2d>& x,
     }
     a.mass += rho * area;
   }
-  a.M.resize(n, n);
-  a.K.resize(n, n);
-  a.M.setFromTriplets(m.begin(), m.end());
-  a.K.setFromTriplets(k.begin(), k.end());
-  // Symmetric to the last bit (the element matrices are, up to round-off).
-  a.K = Sparse(0.5 * (a.K + Sparse(a.K.transpose())));
+  set_matrices(a, n, m, k);
   return a;
 }
 
