@@ -117,18 +117,22 @@ TEST(Backbone, StartsAtTheLinearModeAtGrazing) {
   }
 }
 
+// (11 points: mode 0's 12th lies at a fold in frequency, where the step
+// control of the two runs parts at round-off on some BLAS kernels: OpenBLAS
+// single-threaded with OPENBLAS_CORETYPE=Haswell flags the fold for 2 g and
+// not for g.)
 TEST(Backbone, IsHomogeneousInTheGap) {
   Chain one, two;
   two.gaps *= 2;
   nbm::BackboneOptions o;
-  o.points = 12;
+  o.points = 11;
   o.step = 0.1;
   for (nbm::Index j : {0, 1}) {
     SCOPED_TRACE("mode " + std::to_string(j));
     const nbm::Backbone b1 = nbm::backbone(one.field(), j, o);
     const nbm::Backbone b2 = nbm::backbone(two.field(), j, o);
-    ASSERT_EQ(b1.points.size(), 12u) << b1.stop_reason;
-    ASSERT_EQ(b2.points.size(), 12u) << b2.stop_reason;
+    ASSERT_EQ(b1.points.size(), 11u) << b1.stop_reason;
+    ASSERT_EQ(b2.points.size(), 11u) << b2.stop_reason;
     for (std::size_t k = 0; k < b1.points.size(); ++k) {
       const auto &p = b1.points[k], &q = b2.points[k];
       EXPECT_NEAR(q.orbit.period, p.orbit.period, 1e-8 * p.orbit.period) << "point " << k;
