@@ -14,37 +14,49 @@ constexpr int kMaxIterations = 500;
 
 }  // namespace
 
-Vector solve_mass(const SparseMatrix& M, const Vector& r, const std::string& what) {
-  const Vector diagonal = M.diagonal();
-  for (Index i = 0; i < diagonal.size(); ++i)
-    if (!(diagonal(i) > 0))
-      throw NumericalError(what + " is not positive definite (diagonal entry " +
-                           std::to_string(i) + " is " + std::to_string(diagonal(i)) + ")");
-  const Vector inverse = diagonal.cwiseInverse();
+MassSolver::MassSolver(const SparseMatrix& M, std::string what)
+    : M_(M), what_(std::move(what)), inverse_diagonal_(M.diagonal()) {
+  for (Index i = 0; i < inverse_diagonal_.size(); ++i)
+    if (!(inverse_diagonal_(i) > 0))
+      throw NumericalError(what_ + " is not positive definite (diagonal entry " +
+                           std::to_string(i) + " is " + std::to_string(inverse_diagonal_(i)) +
+                           ")");
+  inverse_diagonal_ = inverse_diagonal_.cwiseInverse();
+}
+
+void MassSolver::solve(const Vector& r, Vector& x) const {
   const double target = kMassSolveTolerance * r.norm();
-  Vector x = Vector::Zero(r.size());
-  if (target == 0) return x;
-  Vector residual = r, z = inverse.cwiseProduct(residual), p = z, Mp(r.size());
-  double rz = residual.dot(z);
+  x.setZero(r.size());
+  if (target == 0) return;
+  residual_ = r;
+  z_ = inverse_diagonal_.cwiseProduct(residual_);
+  p_ = z_;
+  double rz = residual_.dot(z_);
   for (int k = 0; k < kMaxIterations; ++k) {
-    Mp.noalias() = M * p;
-    const double pMp = p.dot(Mp);
+    Mp_.noalias() = M_ * p_;
+    const double pMp = p_.dot(Mp_);
     if (!(pMp > 0)) break;  // not positive definite (or broken down): the factor decides
     const double alpha = rz / pMp;
-    x += alpha * p;
-    residual -= alpha * Mp;
-    if (residual.norm() <= target) {
+    x += alpha * p_;
+    residual_ -= alpha * Mp_;
+    if (residual_.norm() <= target) {
       // The recursive residual drifts from the true one: confirm.
-      residual.noalias() = r - M * x;
-      if (residual.norm() <= target) return x;
+      residual_ = r;
+      residual_.noalias() -= M_ * x;
+      if (residual_.norm() <= target) return;
     }
-    z = inverse.cwiseProduct(residual);
-    const double rz_next = residual.dot(z);
-    p = z + (rz_next / rz) * p;
+    z_ = inverse_diagonal_.cwiseProduct(residual_);
+    const double rz_next = residual_.dot(z_);
+    p_ = z_ + (rz_next / rz) * p_;
     rz = rz_next;
   }
   x = r;
-  make_cholesky_inverse(M, what)->solve_in_place(x);
+  make_cholesky_inverse(M_, what_)->solve_in_place(x);
+}
+
+Vector solve_mass(const SparseMatrix& M, const Vector& r, const std::string& what) {
+  Vector x;
+  MassSolver(M, what).solve(r, x);
   return x;
 }
 

@@ -21,6 +21,25 @@ namespace nbm {
 /// curvature met by the iterations, or the factorization failing.
 Vector solve_mass(const SparseMatrix& M, const Vector& r, const std::string& what);
 
+/// The same for many right-hand sides of one M: the diagonal is checked once,
+/// and a solve allocates nothing once the workspaces are sized (unless the
+/// iterations fail and M is factored). M must outlive the solver; one solve
+/// at a time.
+class MassSolver {
+ public:
+  /// Throws NumericalError naming `what` if a diagonal entry of M is not
+  /// positive.
+  MassSolver(const SparseMatrix& M, std::string what);
+  /// x solves M x = r (x may not alias r).
+  void solve(const Vector& r, Vector& x) const;
+
+ private:
+  const SparseMatrix& M_;
+  std::string what_;
+  Vector inverse_diagonal_;
+  mutable Vector residual_, z_, p_, Mp_;
+};
+
 /// The relative residual solve_mass reaches by iterating, or it factors.
 constexpr double kMassSolveTolerance = 1e-14;
 

@@ -1,5 +1,7 @@
 #include "massless_newmark_stepper.hpp"
 
+#include <cmath>
+#include <limits>
 #include <string>
 
 #include "errors.hpp"
@@ -43,8 +45,14 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
     : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
-      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {
+      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()),
+      energy_stable_(iteration_.beta() == 0.25 && iteration_.gamma() == 0.5 &&
+                     damping.b_K == 0) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
+  // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
+  // M_OO^-1 r_O and leave the contact rows at r_C.
+  interior_mass_ = problem.M() + SparseMatrix(E_C * E_C.transpose());
+  mass_solver_ = std::make_unique<MassSolver>(interior_mass_, "M (interior block)");
   const double entries = S_.forward_entries(E_C);
   keep_columns_ = columns == ContactColumns::kAuto
                       ? entries <= kCachedColumnEntries || 8 * entries <= S_.factor_entries()
@@ -59,16 +67,12 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
-  // M + E_C E_C^T is definite and block diagonal (M_CO = 0): its solve gives
   // a_O = M_OO^-1 r_O and a_C = 0, then projected onto the nodal boundary
   // relation (v_C = A v_O differentiated).
-  const Index nc = problem_.n_contact();
-  const SparseMatrix& E_C = problem_.constraint_basis().rightCols(nc);
-  const SparseMatrix M_reg = problem_.M() + SparseMatrix(E_C * E_C.transpose());
   Vector r = load.F - problem_.K() * u_;
   if (damped()) r -= C_ * v_;
   for (Index c : problem_.contact_index()) r(c) = 0.0;
-  a_ = solve_mass(M_reg, r, "M (interior block)");
+  mass_solver_->solve(r, a_);
   acceleration_constraint(load, active_, h_accel_);
   boundary_.project(a_, active_, h_accel_);
 }
@@ -109,6 +113,53 @@ const LcpResult& MasslessNewmarkStepper::accelerate(const Vector& g, Vector& a) 
   return lcp;
 }
 
+void MasslessNewmarkStepper::return_to_relation(const Vector& F, const Vector& g) {
+  // u_C of a step (5.2) is admissible (gap >= 0) but satisfies the relation
+  // at the step's middle; the relation's u_C minimizes the elastic energy
+  // over the admissible u_C at this u_O, so moving there only lowers the
+  // energy (method.md §5.1). a_O then changes by -M_OO^-1 K_OC du_C.
+  const auto& c = problem_.contact_index();
+  const Index nc = problem_.n_contact();
+  u_C_before_.resize(nc);
+  for (Index k = 0; k < nc; ++k) u_C_before_(k) = u_(c[k]);
+  const LcpResult& relation = boundary_.enforce(u_, F, g, active_);
+  for (Index k = 0; k < nc; ++k) active_[k] = relation.active[k];
+  stiffness_change_.setZero(u_.size());
+  for (Index k = 0; k < nc; ++k) {
+    const double du = u_(c[k]) - u_C_before_(k);
+    if (du != 0) stiffness_change_ += du * problem_.K().col(c[k]);
+  }
+  for (Index k = 0; k < nc; ++k) stiffness_change_(c[k]) = 0.0;
+  mass_solver_->solve(stiffness_change_, correction_);
+  a_ -= correction_;
+}
+
+double MasslessNewmarkStepper::energy(const Vector& u, const Vector& v, const Vector& F) {
+  Ku_.noalias() = problem_.K() * u;
+  Mv_.noalias() = problem_.M() * v;
+  return 0.5 * v.dot(Mv_) + 0.5 * u.dot(Ku_) - F.dot(u);
+}
+
+double MasslessNewmarkStepper::balance(const Vector& u, const Vector& v, double work,
+                                       const Vector& F) {
+  double b = energy(u, v, F) - work;
+  if (damped()) {
+    v_mean_ = 0.5 * (v_start_ + v);
+    Mv_.noalias() = C_ * v_mean_;
+    b += dt_ * v_mean_.dot(Mv_);
+  }
+  return b;
+}
+
+double MasslessNewmarkStepper::blend(double theta, const ContactLoad& next) {
+  // The state theta of the way from the step (5.2) (mid_) to the
+  // trapezoidal one (trap_), returned to the relation; its energy balance.
+  u_ = u_mid_ + theta * (u_trap_ - u_mid_);
+  v_ = v_mid_ + theta * (v_trap_ - v_mid_);
+  boundary_.enforce(u_, next.F, next.obstacle.g, active_);
+  return balance(u_, v_, work_mid_ + theta * (work_trap_ - work_mid_), next.F);
+}
+
 StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
   const double bdt2 = iteration_.beta_dt2();
@@ -118,28 +169,98 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
 
   // In acceleration form, u = u_hat + bdt2 a (no cancellation at small dt):
   // S a = F - K u_hat - E_C lambda with lambda from the LCP (header).
-  Vector& a = acceleration_;
-  a = next.F;
-  a.noalias() -= problem_.K() * u_hat_;
+  rhs_ = next.F;
+  rhs_.noalias() -= problem_.K() * u_hat_;
   if (damped()) {
     // Interior rows: - C v~; contact rows: s (F - K u_hat)_C (header).
     Cv_.noalias() = C_ * v_pred_;
-    for (Index k = 0; k < nc; ++k) Cv_(c[k]) = (1 - contact_row_scale_) * a(c[k]);
-    a -= Cv_;
+    for (Index k = 0; k < nc; ++k) Cv_(c[k]) = (1 - contact_row_scale_) * rhs_(c[k]);
+    rhs_ -= Cv_;
   }
+  if (energy_stable_) {
+    boundary_.reactions(u_, F_, lambda_start_);
+    u_start_ = u_;
+    v_start_ = v_;
+  }
+  Vector& a = acceleration_;
+  a = rhs_;
   const LcpResult& lcp = accelerate(g, a);
-
   u_ = u_hat_ + bdt2 * a;
   a_.swap(a);  // acceleration_: a workspace again from here
   iteration_.correct_velocity(v_pred_, a_, v_);
-  // The LCP's z is lambda: z_k = 0 (lcp.active) where contact k is open.
-  for (Index k = 0; k < nc; ++k) active_[k] = !lcp.active[k];
+  // The LCP's z is lambda_{n+1}: z_k = 0 (lcp.active) where contact k is open.
+  bool switched = false;
+  for (Index k = 0; k < nc; ++k) {
+    switched = switched || active_[k] == lcp.active[k];
+    active_[k] = !lcp.active[k];
+  }
   // Closed contacts sit exactly on the obstacle, not only to the round-off of
   // the solves (which grows with beta dt^2 |K|).
   for (Index k = 0; k < nc; ++k)
     if (active_[k]) u_(c[k]) = g(k);
   StepReport report;
   report.active_set_iterations = 1;
+  if (!energy_stable_) return report;
+
+  // The trapezoidal step's obstacle work, -(lambda_n + lambda_{n+1}) / 2 . dg.
+  work_trap_ = 0;
+  for (Index k = 0; k < nc; ++k)
+    work_trap_ -= 0.5 * (lambda_start_(k) + lcp.z(k)) * (g(k) - obstacle_.g(k));
+  if (!switched) {
+    add_obstacle_work(work_trap_);
+    return report;
+  }
+  energy_start_ = energy(u_start_, v_start_, F_);
+  // Round-off of the energies: of the size of their largest term.
+  const double tolerance =
+      64 * std::numeric_limits<double>::epsilon() *
+      (0.5 * std::abs(v_start_.dot(Mv_)) + 0.5 * std::abs(u_start_.dot(Ku_)) +
+       std::abs(F_.dot(u_start_)));
+  const double gain_trap = balance(u_, v_, work_trap_, next.F) - energy_start_;
+  if (gain_trap <= tolerance) {
+    add_obstacle_work(work_trap_);
+    return report;
+  }
+
+  // It would gain energy (5.1): the step (5.2), whose force mu / 2 is
+  // complementary to the end gap (the LCP's z = mu for the contact rows
+  // r_C + lambda_n), returned to the relation, cannot. The step taken is
+  // the one of the way between the two whose energy balance is the start's.
+  u_trap_ = u_;
+  v_trap_ = v_;
+  a_trap_ = a_;
+  a = rhs_;
+  for (Index k = 0; k < nc; ++k) a(c[k]) += lambda_start_(k);
+  const LcpResult& mid = accelerate(g, a);
+  work_mid_ = 0;
+  for (Index k = 0; k < nc; ++k) work_mid_ -= 0.5 * mid.z(k) * (g(k) - obstacle_.g(k));
+  for (Index k = 0; k < nc; ++k) active_[k] = !mid.active[k];
+  u_mid_ = u_hat_ + bdt2 * a;
+  iteration_.correct_velocity(v_pred_, a, v_mid_);
+  a_mid_ = a;
+  // Regula falsi (Illinois) on f(theta) = balance - E_n, f(0) <= 0 < f(1),
+  // keeping a theta with f <= 0.
+  double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_, f_hi = gain_trap;
+  int side = 0;
+  for (int it = 0; it < 60 && f_lo < -tolerance && hi - lo > 1e-15; ++it) {
+    const double theta = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+    const double f = blend(theta, next) - energy_start_;
+    if (f <= 0) {
+      lo = theta, f_lo = f;
+      if (side == -1) f_hi /= 2;
+      side = -1;
+    } else {
+      hi = theta, f_hi = f;
+      if (side == 1) f_lo /= 2;
+      side = 1;
+    }
+  }
+  const double theta = lo;
+  u_ = u_mid_ + theta * (u_trap_ - u_mid_);
+  v_ = v_mid_ + theta * (v_trap_ - v_mid_);
+  a_ = a_mid_ + theta * (a_trap_ - a_mid_);
+  add_obstacle_work(work_mid_ + theta * (work_trap_ - work_mid_));
+  return_to_relation(next.F, g);
   return report;
 }
 

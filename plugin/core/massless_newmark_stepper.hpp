@@ -30,6 +30,24 @@
 // instead of 3.8 (bench/why-scale.md); and Y's memory is saved (3.4 GB on the 3D block
 // of 1e6 dofs, where L holds 15 GB).
 //
+// Energy (method.md §5.1): with average acceleration (beta = 1/4,
+// gamma = 1/2) and no stiffness-proportional damping, no step gains energy.
+// The trapezoidal rule applies the mean of the contact forces at the step's
+// ends, (lambda_n + lambda_{n+1}) / 2, which does work lambda_n . gap_{n+1}
+// / 2 > 0 on a node that lifts off: a body resting on its support gains
+// energy wherever its contacts switch. So a switching step whose energy
+// balance would rise is replaced. The step (5.2) applies one force mu / 2,
+// complementary to the gap at its end (the LCP above with the contact rows
+// r_C + lambda_n, lambda_n = F_C - (K u_n)_C: same matrix), and does work
+// -mu . gap_n / 2 <= 0; its u_C, admissible but on the relation at the
+// step's middle, is put back on the relation at u_O^{n+1}, which only
+// lowers the elastic energy, and a_O made consistent with it by a solve
+// with the interior mass (conjugate gradients, mass_solve.hpp). The step
+// taken is the state on the way from (5.2) to the trapezoidal step, both
+// returned to the relation, whose balance is the start's (regula falsi on
+// the fraction of the way): the energy is conserved there, and falls only
+// on the steps where the trapezoidal rule itself loses it (touchdowns).
+//
 // Damping (method.md §9): the contact dofs carry no damping of their own
 // either (C_user's rows and columns of the contact dofs must vanish; a_M M
 // is redistributed with M), except Rayleigh's stiffness part b_K K, whose
@@ -44,6 +62,7 @@
 #include <memory>
 
 #include "lcp.hpp"
+#include "mass_solve.hpp"
 #include "newmark_iteration.hpp"
 #include "nbm_stepper.hpp"
 
@@ -68,6 +87,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
 
   /// Whether Y is kept.
   bool keeps_contact_columns() const { return keep_columns_; }
+  /// Whether the step is the energy-stable one (header): beta = 1/4,
+  /// gamma = 1/2 and no stiffness-proportional damping.
+  bool energy_stable() const { return energy_stable_; }
 
   using Stepper::step;
 
@@ -79,6 +101,7 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// Only g_{n+1} enters (the contact dofs carry no inertia, so the
   /// obstacle's rates matter only for the reported v_C, a_C).
   StepReport advance_interior(const ContactLoad& next) override;
+  bool accounts_obstacle_work() const override { return energy_stable_; }
 
  private:
   /// a <- S^-1 (a - E_C lambda) with lambda the LCP's solution for
@@ -86,6 +109,18 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// result (z = lambda).
   const LcpResult& accelerate(const Vector& g, Vector& a);
   const LcpResult& contact_forces(const Vector& g);  // the LCP for a_C_
+  /// After an energy-stable step that changed the active set: u_C onto the
+  /// nodal boundary relation at u_O (load F, gaps g), a_O consistent with
+  /// it; the new active set.
+  void return_to_relation(const Vector& F, const Vector& g);
+  /// E = v'Mv/2 + u'Ku/2 - F.u (leaves K u in Ku_, M v in Mv_).
+  double energy(const Vector& u, const Vector& v, const Vector& F);
+  /// E + the step's dissipation - the obstacle's work over the step, for
+  /// the end state (u, v) of the current step (from v_start_).
+  double balance(const Vector& u, const Vector& v, double work, const Vector& F);
+  /// u_, v_ at theta of the way from the step (5.2) to the trapezoidal one,
+  /// returned to the relation; their balance.
+  double blend(double theta, const ContactLoad& next);
 
   NewmarkIteration iteration_;
   const CholeskyInverse& S_;              // the iteration matrix
@@ -93,8 +128,15 @@ class MasslessNewmarkStepper final : public NbmStepper {
   SparseMatrix Y_;                        // L^-1 P E_C, if kept
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   double contact_row_scale_;              // s of the header (1 without b_K)
+  bool energy_stable_;                    // the step of the header's "Energy"
+  SparseMatrix interior_mass_;            // M + E_C E_C' (M_CC = 0, M_CO = 0)
+  std::unique_ptr<MassSolver> mass_solver_;  // of interior_mass_
   // Workspaces of a step (sized by the first one).
   Vector u_hat_, v_pred_, acceleration_, correction_, q_, a_C_, h_accel_, Cv_;
+  Vector lambda_start_, u_C_before_, stiffness_change_;
+  // The energy-stable step's candidates: the trapezoidal step and (5.2).
+  Vector rhs_, Ku_, Mv_, u_start_, v_start_, v_mean_, u_trap_, v_trap_, a_trap_, u_mid_, v_mid_, a_mid_;
+  double energy_start_ = 0, work_trap_ = 0, work_mid_ = 0;
   ActiveSet open_;
 };
 

@@ -164,8 +164,9 @@ StepReport Stepper::step(const ContactLoad& next) {
   // The obstacle's work over the step, -dg . (lambda_n + lambda_{n+1}) / 2:
   // only when the obstacle moves (lambda_n taken before the state changes).
   const bool moving = next.obstacle.g != obstacle_.g;
-  if (moving) {
-    check_obstacle_motion(next.obstacle);
+  if (moving) check_obstacle_motion(next.obstacle);
+  const bool work_here = moving && !accounts_obstacle_work();
+  if (work_here) {
     reactions(lambda_old_);
     dg_ = next.obstacle.g - obstacle_.g;
   }
@@ -174,7 +175,7 @@ StepReport Stepper::step(const ContactLoad& next) {
   F_ = next.F;
   obstacle_ = next.obstacle;
   t_ += dt_;
-  if (moving) {
+  if (work_here) {
     reactions(lambda_new_);
     obstacle_work_ -= 0.5 * (dg_.dot(lambda_old_) + dg_.dot(lambda_new_));
   }

@@ -165,6 +165,10 @@ class Stepper {
   /// Adds to the obstacle's work a scheme that accounts for it itself (a
   /// contact frame that follows the body, whose obstacle is not a gap vector).
   void add_obstacle_work(double work) { obstacle_work_ += work; }
+  /// True for a scheme that adds a moving obstacle's work itself
+  /// (add_obstacle_work) because its contact force over a step is not the
+  /// mean of the reactions at the step's ends.
+  virtual bool accounts_obstacle_work() const { return false; }
   /// Throws InputError if a gap of `next` differs from the current one by
   /// more than its rates allow over dt (a jump of the obstacle, method.md §8).
   void check_obstacle_motion(const Obstacle& next) const;

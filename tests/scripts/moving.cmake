@@ -43,11 +43,16 @@ endforeach()
 # constant acceleration (s quadratic, every scheme integrates it exactly) the
 # two runs are the same computation up to round-off: frameDiff (relative to
 # the largest displacement) <= 1e-12 over 400 steps (measured 5e-14 P1,
-# 2.2e-13 P2).
+# 2.2e-13 P2) -- except where a switching step is replaced because the
+# trapezoidal rule would gain energy (method.md §5.1): energy is not frame-
+# invariant (the moving frame's kinetic energy and the table's work differ
+# from the fixed frame's), so the two runs may replace different steps, by
+# steps that differ by what the trapezoidal one would gain. Bound 1e-10
+# (measured 5e-14 P1, 7.2e-12 P2 at the impact's switching step).
 foreach(order 1 2)
   nbm_script_test(vibrating-table-frames-quadratic-P${order} ${EDP}/vibrating-table.edp
     -check 1 -mass redistributed -motion quadratic -s1 0 -s2 30 -T 0.1 -h0 0.002
-    -maxFrameDiff 1e-12 -order ${order} -vtkFrames 0 -out vt-frames-quadratic-P${order})
+    -maxFrameDiff 1e-10 -order ${order} -vtkFrames 0 -out vt-frames-quadratic-P${order})
   set_tests_properties(script.vibrating-table-frames-quadratic-P${order} PROPERTIES LABELS "script;moving")
 endforeach()
 # A harmonic table, s = A sin(w t), is not integrated exactly: the frames

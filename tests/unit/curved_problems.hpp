@@ -123,20 +123,18 @@ inline Assembled assemble_tetrahedra(const std::vector<Eigen::Vector3d>& x,
   return a;
 }
 
-/// A ball of radius r centred at c: the cube [-1, 1]^3 with n cells a side,
-/// each cut into 6 tetrahedra, mapped onto the ball by x -> r |x|_inf x / |x|_2
-/// (the cube's faces onto the sphere); gravity along -z.
-inline CurvedBody ball(double r, const Eigen::Vector3d& c, int n, double rho, double E, double nu,
-                       double g) {
+/// The cube [-1, 1]^3 with n cells a side, each cut into 6 tetrahedra,
+/// mapped by `map`; the boundary nodes (of the cube's faces) are the contact
+/// candidates; gravity along -z.
+template <class Map>
+CurvedBody mapped_cube(int n, const Map& map, double rho, double E, double nu, double g) {
   auto node = [n](int i, int j, int k) { return (k * (n + 1) + j) * (n + 1) + i; };
   std::vector<Eigen::Vector3d> x((n + 1) * (n + 1) * (n + 1));
   std::vector<bool> boundary(x.size(), false);
   for (int k = 0; k <= n; ++k)
     for (int j = 0; j <= n; ++j)
       for (int i = 0; i <= n; ++i) {
-        const Eigen::Vector3d y(-1 + 2.0 * i / n, -1 + 2.0 * j / n, -1 + 2.0 * k / n);
-        const double norm = y.norm();
-        x[node(i, j, k)] = norm > 0 ? Eigen::Vector3d(c + r * y.cwiseAbs().maxCoeff() / norm * y) : c;
+        x[node(i, j, k)] = map(Eigen::Vector3d(-1 + 2.0 * i / n, -1 + 2.0 * j / n, -1 + 2.0 * k / n));
         boundary[node(i, j, k)] = i == 0 || j == 0 || k == 0 || i == n || j == n || k == n;
       }
   std::vector<std::array<int, 4>> tets;
@@ -159,6 +157,17 @@ inline CurvedBody ball(double r, const Eigen::Vector3d& c, int n, double rho, do
     if (boundary[i])
       for (int cc = 0; cc < 3; ++cc) body.contact_dofs.push_back(3 * static_cast<long>(i) + cc);
   return body;
+}
+
+/// A ball of radius r centred at c: mapped_cube with x -> r |x|_inf x / |x|_2
+/// (the cube's faces onto the sphere).
+inline CurvedBody ball(double r, const Eigen::Vector3d& c, int n, double rho, double E, double nu,
+                       double g) {
+  const auto onto_ball = [&](const Eigen::Vector3d& y) -> Eigen::Vector3d {
+    const double norm = y.norm();
+    return norm > 0 ? Eigen::Vector3d(c + r * y.cwiseAbs().maxCoeff() / norm * y) : c;
+  };
+  return mapped_cube(n, onto_ball, rho, E, nu, g);
 }
 
 /// The centre of mass of a displacement u (M-weighted, component by component).

@@ -2,6 +2,10 @@
 // state exposed in user coordinates (where the test problems are assembled).
 #pragma once
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
@@ -72,5 +76,20 @@ struct Simulation {
   }
   double energy() const { return total_energy(a, u(), v()); }
 };
+
+/// The checks of an NBM step's end state: no penetration (1e-12 of the
+/// displacement scale, at least u_floor), no tensile reaction, and gaps
+/// complementary to reactions (the nodal boundary relation at the new
+/// interior displacement); `step` names the step in the messages.
+inline void expect_exact_contact(const nbm::Stepper& stepper, double u_floor, int step) {
+  const Eigen::VectorXd gap = stepper.gaps(), lambda = stepper.reactions();
+  const double u_scale = std::max(u_floor, stepper.u().cwiseAbs().maxCoeff());
+  const double f_scale = std::max(1.0, lambda.cwiseAbs().maxCoeff());
+  EXPECT_GE(gap.minCoeff(), -1e-12 * u_scale) << "step " << step;
+  EXPECT_GE(lambda.minCoeff(), -1e-9 * f_scale) << "step " << step;
+  for (nbm::Index i = 0; i < gap.size(); ++i)
+    EXPECT_LE(std::min(std::abs(gap(i)) / u_scale, std::abs(lambda(i)) / f_scale), 1e-9)
+        << "step " << step << ", contact " << i;
+}
 
 }  // namespace nbm_test
