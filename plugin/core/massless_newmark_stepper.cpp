@@ -143,6 +143,10 @@ double MasslessNewmarkStepper::energy(const Vector& u, const Vector& v, const Ve
 double MasslessNewmarkStepper::balance(const Vector& u, const Vector& v, double work,
                                        const Vector& F) {
   double b = energy(u, v, F) - work;
+  // A load that changes over the step changes the potential -F.u by itself:
+  // the trapezoidal rule's work of the load is (F_n + F_{n+1}) / 2 . du, so
+  // its balance carries + (F_{n+1} - F_n) . (u_n + u_{n+1}) / 2.
+  if (F != F_) b += 0.5 * (F - F_).dot(u_start_ + u);
   if (damped()) {
     v_mean_ = 0.5 * (v_start_ + v);
     Mv_.noalias() = C_ * v_mean_;

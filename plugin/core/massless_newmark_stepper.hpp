@@ -115,8 +115,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
   void return_to_relation(const Vector& F, const Vector& g);
   /// E = v'Mv/2 + u'Ku/2 - F.u (leaves K u in Ku_, M v in Mv_).
   double energy(const Vector& u, const Vector& v, const Vector& F);
-  /// E + the step's dissipation - the obstacle's work over the step, for
-  /// the end state (u, v) of the current step (from v_start_).
+  /// E + the step's dissipation - the work of the obstacle and of the load's
+  /// change over the step, for the end state (u, v) of the current step
+  /// (from u_start_, v_start_, under F_ to F).
   double balance(const Vector& u, const Vector& v, double work, const Vector& F);
   /// u_, v_ at theta of the way from the step (5.2) to the trapezoidal one,
   /// returned to the relation; their balance.

@@ -504,7 +504,7 @@ std::vector<double> Solver::scheme_state() const {
 }
 std::vector<double> Solver::energies() const {
   const Energies e = impl_->stepper->energies();
-  return {e.kinetic, e.elastic, e.load, e.total(), e.obstacle_work, e.dissipated};
+  return {e.kinetic, e.elastic, e.load, e.total(), e.obstacle_work, e.dissipated, e.load_work};
 }
 
 }  // namespace nbm

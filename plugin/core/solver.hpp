@@ -198,9 +198,10 @@ class Solver {
   std::vector<double> scheme_state() const;
   /// kinetic, elastic, load potential, total (their sum), the work done by a
   /// moving obstacle since the start (method.md §8) and the energy dissipated
-  /// by the damping since the start (method.md §9): with a constant load,
-  /// total + dissipated - total(start) = obstacle work, to the scheme's
-  /// accuracy.
+  /// by the damping since the start (method.md §9), and what the load's
+  /// changes in time did to the total since the start (method.md §5.1):
+  /// total + dissipated - total(start) = obstacle work + load work, to the
+  /// scheme's accuracy (the massless boundary: never more).
   std::vector<double> energies() const;
 
  private:

@@ -107,6 +107,7 @@ void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, d
   obstacle_ = load.obstacle;
   t_ = t;
   obstacle_work_ = 0;
+  load_work_ = 0;
   dissipated_ = 0;
   a_.resize(n);
   fresh_start_ = check;
@@ -142,6 +143,7 @@ void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const A
   obstacle_ = load.obstacle;
   t_ = t;
   obstacle_work_ = 0;
+  load_work_ = 0;
   dissipated_ = 0;
   initialized_ = true;
 }
@@ -171,7 +173,10 @@ StepReport Stepper::step(const ContactLoad& next) {
     dg_ = next.obstacle.g - obstacle_.g;
   }
   if (damped()) v_mid_ = v_;
+  const bool load_changes = next.F != F_;
+  if (load_changes) u_before_ = u_;
   const StepReport report = advance(next);
+  if (load_changes) load_work_ -= 0.5 * (next.F - F_).dot(u_before_ + u_);
   F_ = next.F;
   obstacle_ = next.obstacle;
   t_ += dt_;
@@ -225,6 +230,7 @@ Energies Stepper::energies() const {
   e.elastic = 0.5 * u_.dot(problem_.K() * u_);
   e.load = -F_.dot(u_);
   e.obstacle_work = obstacle_work_;
+  e.load_work = load_work_;
   e.dissipated = dissipated_;
   return e;
 }

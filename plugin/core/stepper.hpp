@@ -34,6 +34,11 @@ struct Energies {
   /// §9). total() + dissipated - obstacle_work stays constant for a fixed
   /// load, to the scheme's accuracy.
   double dissipated = 0;
+  /// What a load changing in time does to the total energy since the start,
+  /// -sum (F_{n+1} - F_n) . (u_n + u_{n+1}) / 2 over the steps (the
+  /// trapezoidal rule's balance of the potential -F.u; method.md §5.1):
+  /// total() + dissipated - obstacle_work - load_work stays constant.
+  double load_work = 0;
   double total() const { return kinetic + elastic + load; }
 };
 
@@ -191,11 +196,13 @@ class Stepper {
   void check_load(const ContactLoad& load, bool whole) const;
 
   double obstacle_work_ = 0;
+  double load_work_ = 0;
   double dissipated_ = 0;
   bool fresh_start_ = true;
   // Workspaces of a step: the gap change and the reactions at both ends of a
   // step of a moving obstacle; the mid-step velocity and C times it.
-  Vector dg_, lambda_old_, lambda_new_, v_mid_, Cv_;
+  // u_n, when the load changes over the step.
+  Vector dg_, lambda_old_, lambda_new_, v_mid_, Cv_, u_before_;
 };
 
 }  // namespace nbm

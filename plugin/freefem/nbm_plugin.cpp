@@ -16,7 +16,7 @@
 //   nbmReplaceContacts(S, cdofs, cnormals, cgaps, u, v, F); // re-linearisation
 //   nbmRestart(S, u, v, F, t, a, act [, state]); // exact restart from a saved state
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
-//   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 6 entries, e[5] dissipated
+//   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 7 entries, e[5] dissipated, e[6] load work
 //   NBMObstacle bowl("circle", c, radius = R, side = "inside");   // obstacle_functions.cpp
 //   NBM F(M, K, cdofs, normals, gaps, dt = 1e-3, mass = "redistributed",
 //         positions = xy, obstacle = bowl,  // held exactly, frame following the body

@@ -235,7 +235,7 @@ TEST(DampedEnergyBalance, EnergyPlusDissipationIsConstantWithoutContact) {
     for (int k = 0; k < 1000; ++k) {
       s.step(u, v, F);
       const std::vector<double> e = s.energies();
-      ASSERT_EQ(e.size(), 6u);
+      ASSERT_EQ(e.size(), 7u);
       worst = std::max(worst, std::abs(e[3] + e[5] - E0));
     }
     const std::vector<double> e = s.energies();

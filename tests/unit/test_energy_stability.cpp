@@ -31,22 +31,31 @@ struct Rest {
   double loss = 0;                  // (E - W)_0 - (E - W)_end
 };
 
-// Steps s `steps` times with the obstacle `at(t)`, checking at every step
-// impenetrability, non-negative reactions and their complementarity with
-// the gaps (the nodal boundary relation at the step's end), and the energy
-// balance, in units of `scale`.
-template <class ObstacleAt>
-Rest rest_on(Simulation& s, int steps, double scale, const ObstacleAt& at) {
+// Steps s `steps` times with the obstacle `at(t)` and the load `load(t)`,
+// checking at every step impenetrability and the nodal boundary relation
+// (expect_exact_contact) and the energy balance E + D - W, in units of
+// `scale`; W is the obstacle's work plus the work of the load's changes,
+// -(F_{n+1} - F_n) . (u_n + u_{n+1}) / 2 per step (the trapezoidal rule's
+// balance of a changing load: method.md §5.1).
+template <class ObstacleAt, class LoadAt>
+Rest rest_on(Simulation& s, int steps, double scale, const ObstacleAt& at, const LoadAt& load) {
   Rest r;
+  double load_work = 0;  // computed here, and compared with the stepper's
   auto balance = [&] {
     const nbm::Energies e = s.stepper->energies();
-    return e.total() + e.dissipated - e.obstacle_work;
+    EXPECT_NEAR(e.load_work, load_work, 1e-12 * scale);
+    return e.total() + e.dissipated - e.obstacle_work - e.load_work;
   };
   const double b0 = balance();
   double before = b0;
+  Vec F = load(0.0);
   for (int k = 1; k <= steps; ++k) {
     const Obstacle o = at(k * s.stepper->dt());
-    s.stepper->step(ContactLoad{s.F_int, o});
+    const Vec F_next = load(k * s.stepper->dt());
+    const Vec u_before = s.stepper->u();
+    s.stepper->step(ContactLoad{F_next, o});
+    load_work -= 0.5 * (F_next - F).dot(u_before + s.stepper->u());
+    F = F_next;
     nbm_test::expect_exact_contact(*s.stepper, kDrop, k);
     const double b = balance();
     r.worst_step_rise = std::max(r.worst_step_rise, (b - before) / scale);
@@ -54,6 +63,11 @@ Rest rest_on(Simulation& s, int steps, double scale, const ObstacleAt& at) {
   }
   r.loss = (b0 - before) / scale;
   return r;
+}
+
+template <class ObstacleAt>
+Rest rest_on(Simulation& s, int steps, double scale, const ObstacleAt& at) {
+  return rest_on(s, steps, scale, at, [&](double) { return s.F_int; });
 }
 
 Rest rest_on_fixed_ground(Simulation& s, int steps, double scale) {
@@ -158,6 +172,20 @@ TEST(EnergyStableMassless, MovingGroundAddsExactlyItsWork) {
     const Rest r = rest_on(b.s, 3000, b.scale, ground);
     EXPECT_LE(r.worst_step_rise, kRoundoff) << "nu " << nu;
     EXPECT_GT(std::abs(b.s.stepper->energies().obstacle_work), 0.1 * b.scale);
+  }
+}
+
+TEST(EnergyStableMassless, VaryingLoadAddsExactlyItsWork) {
+  // Gravity pulsing between 0.5 and 1.5 g (period 0.2) on the block at rest:
+  // the balance moves by the load's work only, in every step.
+  for (double nu : {0.3, 0.49}) {
+    Block b(12, nu, 1e-3);
+    const Obstacle ground = b.s.stepper->obstacle();
+    const Vec F0 = b.s.F_int;
+    const auto pulse = [&](double t) -> Vec { return F0 * (1 + 0.5 * std::sin(2 * M_PI * t / 0.2)); };
+    b.s.stepper->initialize(b.s.stepper->u(), b.s.stepper->v(), ContactLoad{pulse(0), ground}, 0.0);
+    const Rest r = rest_on(b.s, 3000, b.scale, [&](double) { return ground; }, pulse);
+    EXPECT_LE(r.worst_step_rise, kRoundoff) << "nu " << nu;
   }
 }
 

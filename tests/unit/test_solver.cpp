@@ -194,10 +194,11 @@ TEST(SolverDiagnostics, ComplementarityEnergiesAndCountersAlongABouncingRun) {
         EXPECT_NEAR(lambda, 0.0, 1e-10);  // an open contact carries no force
       }
       const std::vector<double> e = s.energies();
-      ASSERT_EQ(e.size(), 6u);
+      ASSERT_EQ(e.size(), 7u);
       EXPECT_NEAR(e[3], e[0] + e[1] + e[2], 1e-14);
       EXPECT_EQ(e[4], 0.0);  // a fixed obstacle does no work
       EXPECT_EQ(e[5], 0.0);  // nothing dissipated without damping
+      EXPECT_EQ(e[6], 0.0);  // a constant load changes nothing
       EXPECT_NEAR(e[1], 0.5 * nbm_test::to_eigen(u).dot(a.K * nbm_test::to_eigen(u)), 1e-12);
       EXPECT_NEAR(e[2], -a.F.dot(nbm_test::to_eigen(u)), 1e-12);
       EXPECT_EQ(s.acceleration().size(), u.size());
