@@ -164,6 +164,30 @@ double MasslessNewmarkStepper::blend(double theta, const ContactLoad& next) {
   return balance(u_, v_, work_mid_ + theta * (work_trap_ - work_mid_), next.F);
 }
 
+double MasslessNewmarkStepper::balancing_fraction(const ContactLoad& next, double gain_trap,
+                                                  double tolerance) {
+  // Regula falsi (Illinois) on f(theta) = balance(theta) - E_n, with
+  // f(0) <= 0 < f(1) = gain_trap: the largest theta found with f <= 0, once
+  // f >= -tolerance there (energy conserved to round-off).
+  double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_;
+  double w_lo = f_lo, w_hi = gain_trap;  // the secant's values, halved on a repeated side
+  int side = 0;
+  for (int it = 0; it < 60 && f_lo < -tolerance && hi - lo > 1e-15; ++it) {
+    const double theta = (lo * w_hi - hi * w_lo) / (w_hi - w_lo);
+    const double f = blend(theta, next) - energy_start_;
+    if (f <= 0) {
+      lo = theta, f_lo = w_lo = f;
+      if (side == -1) w_hi /= 2;
+      side = -1;
+    } else {
+      hi = theta, w_hi = f;
+      if (side == 1) w_lo /= 2;
+      side = 1;
+    }
+  }
+  return lo;
+}
+
 StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
   const double bdt2 = iteration_.beta_dt2();
@@ -242,24 +266,7 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   u_mid_ = u_hat_ + bdt2 * a;
   iteration_.correct_velocity(v_pred_, a, v_mid_);
   a_mid_ = a;
-  // Regula falsi (Illinois) on f(theta) = balance - E_n, f(0) <= 0 < f(1),
-  // keeping a theta with f <= 0.
-  double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_, f_hi = gain_trap;
-  int side = 0;
-  for (int it = 0; it < 60 && f_lo < -tolerance && hi - lo > 1e-15; ++it) {
-    const double theta = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
-    const double f = blend(theta, next) - energy_start_;
-    if (f <= 0) {
-      lo = theta, f_lo = f;
-      if (side == -1) f_hi /= 2;
-      side = -1;
-    } else {
-      hi = theta, f_hi = f;
-      if (side == 1) f_lo /= 2;
-      side = 1;
-    }
-  }
-  const double theta = lo;
+  const double theta = balancing_fraction(next, gain_trap, tolerance);
   u_ = u_mid_ + theta * (u_trap_ - u_mid_);
   v_ = v_mid_ + theta * (v_trap_ - v_mid_);
   a_ = a_mid_ + theta * (a_trap_ - a_mid_);

@@ -122,6 +122,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// u_, v_ at theta of the way from the step (5.2) to the trapezoidal one,
   /// returned to the relation; their balance.
   double blend(double theta, const ContactLoad& next);
+  /// The fraction of the way whose balance is the start's, given the
+  /// trapezoidal step's gain (> tolerance); leaves u_, v_ at some blend.
+  double balancing_fraction(const ContactLoad& next, double gain_trap, double tolerance);
 
   NewmarkIteration iteration_;
   const CholeskyInverse& S_;              // the iteration matrix

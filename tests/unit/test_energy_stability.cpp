@@ -23,7 +23,7 @@ using Vec = Eigen::VectorXd;
 constexpr double kDrop = 0.01;  // h0: the block falls this far onto the ground
 
 // A step may raise E - W (W the obstacle's work) by round-off only: this
-// fraction of m g h0. (Measured: at most 4e-12 for the bodies below.)
+// fraction of m g h0. (Measured: at most 2e-12 for the bodies below.)
 constexpr double kRoundoff = 1e-10;
 
 struct Rest {
