@@ -22,7 +22,7 @@
 #   histories.png            u(0,t), v(0,t) of every method against the exact one (coarsest N, P1)
 #   <problem>-<method>-P<k>-N<N>.csv / .log   the runs
 # -docs copies tables.md and the PNGs to docs/NAME.md, docs/NAME-*.png, NAME from
-# -docs-name (default compare-bars). The P4 tables of the README:
+# -docs-name (default compare-bars). The P4 tables of docs/results/methods-on-bars.md:
 #   bash scripts/compare-bars.sh -orders 4 -Ns "40 80 160" -out out/compare-bars-P4 \
 #        -docs -docs-name compare-bars-P4
 set -eu

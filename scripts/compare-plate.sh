@@ -41,7 +41,7 @@
 # it oscillates in the contact spring), the touch-down's S the landing.
 # -docs also copies table.md and overlay.png to docs/compare-plate.{md,png}
 # and the NBM run's snapshots to docs/bouncing-plate-snapshots.png (the
-# README's table and figures).
+# table and figures of docs/results/plate.md).
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 . "$repo/scripts/lib.sh"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's blade-tip interaction map from a fresh run of
+# Regenerates the blade-tip interaction map of docs/results/forced.md from a fresh run of
 # edp/blade-tip-sweep.edp (issue 15, item 6):
 #   docs/blade-tip-sweep.png  tip displacement and largest contact force of the
 #                             forced periodic responses against the rotation

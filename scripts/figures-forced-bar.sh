@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's forced-bar figure and numbers from fresh runs of
+# Regenerates the forced-bar figure and numbers of docs/results/forced.md from fresh runs of
 # edp/forced-bar.edp (issue 15, item 6):
 #   docs/forced-bar.png   amplitude of the contact end against the forcing
 #                         frequency: the continuation (stable solid, unstable

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's forced-response figure and numbers from fresh runs
+# Regenerates the forced-response figure and numbers of docs/results/forced.md from fresh runs
 # of edp/forced-plate.edp (issue 15, item 6):
 #   docs/forced-plate.png   amplitude against forcing frequency: the continuation
 #                           (stable solid, unstable dashed, events), the sweeps

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's periodic-solution figures and numbers from fresh
+# Regenerates the periodic-solution figures and numbers of docs/results/periodic.md from fresh
 # runs of edp/cantilever-plate-periodic.edp (paper Figure 3):
 #   docs/cantilever-periodic.png          |u| over one period (massless boundary)
 #   docs/cantilever-periodic-probe.png    probe motion and smallest gap over one period

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates the README's bouncing-bar figure and error table (benchmarks.md
+# Regenerates the bouncing-bar figure and error table of docs/results/bars.md (benchmarks.md
 # §A, reference data, two periods, dt = h/(k c)) from fresh runs:
 #   docs/bouncing-bar.png              u(0,t) of P1, P2, P3 at N = 40 against the exact one
 #   docs/bouncing-bar-convergence.md   relative L2(0,2T) error of u(0,t), rates, penetration

@@ -22,7 +22,7 @@ set_tests_properties(script.element-wrong-mesh PROPERTIES TIMEOUT 300 LABELS scr
 # every impact and the field has gradient jumps along characteristics, so the
 # error is governed by the contact events, not by the polynomial degree, and
 # about 1/2 is the rate to expect for any order: P1 and P2 show 0.5-0.6
-# (README, "The bouncing bar"), P4 0.53, 0.71, 0.62 (least squares 0.63).
+# (docs/results/bars.md, "The bouncing bar"), P4 0.53, 0.71, 0.62 (least squares 0.63).
 # 0.4 is that 1/2 with a 20% margin (a stall on one refinement already fails
 # the decrease check and the 0.015 bound).
 add_test(NAME script.bouncing-bar-convergence-P4
