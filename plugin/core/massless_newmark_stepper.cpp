@@ -1,5 +1,6 @@
 #include "massless_newmark_stepper.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -41,13 +42,15 @@ const Damping& check_boundary_undamped(const ContactProblem& problem, const Damp
 
 MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
                                                double beta, double gamma,
-                                               const Damping& damping, ContactColumns columns)
+                                               const Damping& damping, ContactColumns columns,
+                                               EnergyControl energy)
     : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
       contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()),
       energy_stable_(iteration_.beta() == 0.25 && iteration_.gamma() == 0.5 &&
-                     damping.b_K == 0) {
+                     damping.b_K == 0),
+      bounded_(energy_stable_ && energy == EnergyControl::kBounded) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
   // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
   // M_OO^-1 r_O and leave the contact rows at r_C.
@@ -64,6 +67,34 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
     compliance = iteration_.contact_compliance();
   compliance *= iteration_.beta_dt2();
   lcp_ = std::make_unique<CachedLcpSolver>(std::move(compliance));
+}
+
+void MasslessNewmarkStepper::start(const ContactLoad& load) {
+  returnable_loss_ = 0;
+  balanced_steps_ = 0;
+  NbmStepper::start(load);
+}
+
+Vector MasslessNewmarkStepper::scheme_state() const {
+  return bounded_ ? Vector::Constant(1, returnable_loss_) : Vector();
+}
+
+void MasslessNewmarkStepper::carry_over(const Stepper& previous) {
+  const auto* massless = dynamic_cast<const MasslessNewmarkStepper*>(&previous);
+  if (bounded_ && massless) returnable_loss_ = massless->returnable_loss_;
+}
+
+void MasslessNewmarkStepper::restore_scheme_state(const Vector& state) {
+  // A state saved without it (another control, an older file): nothing kept.
+  if (state.size() == 0 || !bounded_) {
+    Stepper::restore_scheme_state(state);
+    returnable_loss_ = 0;
+    return;
+  }
+  if (state.size() != 1 || !std::isfinite(state(0)) || state(0) < 0)
+    throw InputError("scheme state: expected one finite value >= 0 (the energy-stable step's "
+                     "returnable loss), got " + std::to_string(state.size()) + " values");
+  returnable_loss_ = state(0);
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
@@ -166,7 +197,8 @@ double MasslessNewmarkStepper::blend(double theta, const ContactLoad& next) {
 
 double MasslessNewmarkStepper::balancing_fraction(const ContactLoad& next, double gain_trap,
                                                   double tolerance) {
-  // Regula falsi (Illinois) on f(theta) = balance(theta) - E_n, with
+  // Regula falsi (Illinois) on f(theta) = balance(theta) - E_n (E_n: the
+  // start's energy plus what may be returned), with
   // f(0) <= 0 < f(1) = gain_trap: the largest theta found with f <= 0, once
   // f >= -tolerance there (energy conserved to round-off).
   double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_;
@@ -244,16 +276,21 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
       64 * std::numeric_limits<double>::epsilon() *
       (0.5 * std::abs(v_start_.dot(Mv_)) + 0.5 * std::abs(u_start_.dot(Ku_)) +
        std::abs(F_.dot(u_start_)));
+  // Measured from what the step may reach: the start plus what it may return.
+  energy_start_ += returnable_loss_;
   const double gain_trap = balance(u_, v_, work_trap_, next.F) - energy_start_;
   if (gain_trap <= tolerance) {
+    if (bounded_) returnable_loss_ = std::max(0.0, -gain_trap);
     add_obstacle_work(work_trap_);
     return report;
   }
+  returnable_loss_ = 0;
+  ++balanced_steps_;
 
-  // It would gain energy (5.1): the step (5.2), whose force mu / 2 is
-  // complementary to the end gap (the LCP's z = mu for the contact rows
-  // r_C + lambda_n), returned to the relation, cannot. The step taken is
-  // the one of the way between the two whose energy balance is the start's.
+  // It would gain more than allowed (5.1): the step (5.2), whose force mu / 2
+  // is complementary to the end gap (the LCP's z = mu for the contact rows
+  // r_C + lambda_n), returned to the relation, gains nothing. The step taken
+  // is the one of the way between the two whose balance is the allowed one.
   u_trap_ = u_;
   v_trap_ = v_;
   a_trap_ = a_;

@@ -47,6 +47,12 @@
 // returned to the relation, whose balance is the start's (regula falsi on
 // the fraction of the way): the energy is conserved there, and falls only
 // on the steps where the trapezoidal rule itself loses it (touchdowns).
+// With EnergyControl::kBounded (the default) those losses are kept, and a
+// later switching step may gain up to what is kept: the trapezoidal rule's
+// gains at lift-offs offset its losses at touchdowns as far as they
+// balance, and only the excess is removed, so the energy never exceeds its
+// start (plus work) and the accuracy of the trapezoidal rule is kept where
+// its errors cancel (the bouncing bar).
 //
 // Damping (method.md §9): the contact dofs carry no damping of their own
 // either (C_user's rows and columns of the contact dofs must vanish; a_M M
@@ -68,6 +74,15 @@
 
 namespace nbm {
 
+/// What the energy-stable step bounds (method.md §5.1, "What is bounded").
+enum class EnergyControl {
+  /// E_n + D_n - W_n never above its start: a step may return what earlier
+  /// switching steps of the trapezoidal rule lost (touchdowns), no more.
+  kBounded,
+  /// E_{n+1} + D_{n+1} - W_{n+1} <= E_n + D_n - W_n in every step.
+  kMonotone,
+};
+
 /// Whether Y = L^-1 P E_C is kept (header): by its size next to L's, or
 /// forced (both paths give the same steps to round-off; tests compare them).
 enum class ContactColumns { kAuto, kKept, kRecomputed };
@@ -83,13 +98,27 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// contact dof.
   MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
                          double gamma = 0.5, const Damping& damping = {},
-                         ContactColumns columns = ContactColumns::kAuto);
+                         ContactColumns columns = ContactColumns::kAuto,
+                         EnergyControl energy = EnergyControl::kBounded);
 
   /// Whether Y is kept.
   bool keeps_contact_columns() const { return keep_columns_; }
   /// Whether the step is the energy-stable one (header): beta = 1/4,
   /// gamma = 1/2 and no stiffness-proportional damping.
   bool energy_stable() const { return energy_stable_; }
+  /// What switching steps have lost and a later step may still return
+  /// (EnergyControl::kBounded; 0 otherwise): E_n + D_n - W_n plus it never
+  /// rises (method.md §5.1).
+  double returnable_loss() const { return returnable_loss_; }
+  /// Steps since the start that were taken between the two candidates
+  /// (header): those on which the trapezoidal step would have gained more
+  /// than allowed.
+  long balanced_steps() const { return balanced_steps_; }
+  /// [returnable_loss()] with EnergyControl::kBounded, else empty.
+  Vector scheme_state() const override;
+  /// The returnable loss of a previous massless stepper (a global budget: it
+  /// outlives the contact set).
+  void carry_over(const Stepper& previous) override;
 
   using Stepper::step;
 
@@ -102,6 +131,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// obstacle's rates matter only for the reported v_C, a_C).
   StepReport advance_interior(const ContactLoad& next) override;
   bool accounts_obstacle_work() const override { return energy_stable_; }
+  /// Nothing to return yet, then NbmStepper's start.
+  void start(const ContactLoad& load) override;
+  void restore_scheme_state(const Vector& state) override;
 
  private:
   /// a <- S^-1 (a - E_C lambda) with lambda the LCP's solution for
@@ -133,6 +165,9 @@ class MasslessNewmarkStepper final : public NbmStepper {
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   double contact_row_scale_;              // s of the header (1 without b_K)
   bool energy_stable_;                    // the step of the header's "Energy"
+  bool bounded_;                          // EnergyControl::kBounded with it
+  double returnable_loss_ = 0;            // returnable_loss()
+  long balanced_steps_ = 0;               // balanced_steps()
   SparseMatrix interior_mass_;            // M + E_C E_C' (M_CC = 0, M_CO = 0)
   std::unique_ptr<MassSolver> mass_solver_;  // of interior_mass_
   // Workspaces of a step (sized by the first one).

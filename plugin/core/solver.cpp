@@ -54,6 +54,17 @@ void check_options(const SolverOptions& options) {
   if (options.obstacle && (options.mass != "redistributed" || scheme != "newmark"))
     throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
                      "contact frame follows the body only with massless contact nodes)");
+  if (options.energy) {
+    const std::string& energy = *options.energy;
+    if (energy != "bounded" && energy != "monotone")
+      throw InputError("energy: \"" + energy + "\", expected \"bounded\" or \"monotone\"");
+    if (options.mass != "redistributed" || options.obstacle ||
+        options.beta.value_or(0.25) != 0.25 || options.gamma.value_or(0.5) != 0.5 ||
+        options.rayleigh_stiffness != 0)
+      throw InputError("energy: given without the energy-stable step it controls, which needs "
+                       "mass = \"redistributed\", scheme \"newmark\" with beta = 1/4 and "
+                       "gamma = 1/2, no rayleighK and no obstacle (method.md §5.1)");
+  }
   if (options.mass == "redistributed") {
     if (scheme != "newmark")
       throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
@@ -128,7 +139,10 @@ std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const Contac
   const double beta = options.beta.value_or(defaults.beta);
   const double gamma = options.gamma.value_or(defaults.gamma);
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma, damping);
+    return std::make_unique<MasslessNewmarkStepper>(
+        problem, options.dt, beta, gamma, damping, ContactColumns::kAuto,
+        options.energy.value_or("bounded") == "monotone" ? EnergyControl::kMonotone
+                                                         : EnergyControl::kBounded);
   if (options.scheme == "newmark") {
     NewmarkParameters parameters;
     parameters.beta = beta;
@@ -462,6 +476,7 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
   try {
     impl_->build(impl_->M_user, impl_->K_user, contact);
     impl_->start(uu, vv, F, t, true);
+    impl_->stepper->carry_over(*saved.stepper);
     if (impl_->options.scheme == "moreau-jean") {
       const Stepper& st = *impl_->stepper;
       const Vector gap = st.gaps();

@@ -80,6 +80,12 @@ struct SolverOptions {
   /// the d coordinates of its node, dof-major (size n_dofs * d, d = 1..3).
   std::string mass = "consistent";
   std::vector<double> positions;
+  /// What the energy-stable step of mass "redistributed" bounds (method.md
+  /// §5.1): "bounded" (the default: the energy never exceeds its start plus
+  /// the work done on the body; what touchdowns lose a later lift-off may
+  /// return) or "monotone" (no step raises it). Needs the step: beta = 1/4,
+  /// gamma = 1/2, rayleigh_stiffness = 0 and no obstacle.
+  std::optional<std::string> energy;
   /// Restitution coefficient of scheme "moreau-jean", in [0, 1] (default 0).
   std::optional<double> restitution;
   /// Viscous damping (method.md §9), C = rayleigh_mass M + rayleigh_stiffness K

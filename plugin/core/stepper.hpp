@@ -91,6 +91,9 @@ class Stepper {
   /// another contact description (Solver::replace_contacts): its penetration
   /// is checked only for the schemes that never penetrate.
   void continue_from(const Vector& u, const Vector& v, const ContactLoad& load, double t);
+  /// After continue_from(): takes over what of `previous`'s scheme state
+  /// outlives its contact set; nothing by default.
+  virtual void carry_over(const Stepper& previous) { (void)previous; }
   /// Advances by dt to the load and obstacle of `next` at the new time.
   /// Sizes and the obstacle are checked; the load's entries are taken as
   /// finite (the front end checks them: one pass over the dofs, not two).

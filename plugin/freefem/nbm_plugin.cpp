@@ -4,6 +4,8 @@
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "newmark",
 //         beta = 0.25, gamma = 0.5, fixed = fixedDofs,
 //         mass = "redistributed", positions = xy);   // massless boundary
+//   NBM E(..., mass = "redistributed", positions = xy,
+//         energy = "monotone");  // or "bounded" (default), method.md §5.1
 //   NBM P(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "moreau-jean",
 //         restitution = 0);                           // the impact-law peer
 //   NBM D(M, K, cdofs, normals, gaps, dt = 1e-3, rayleighM = aM, rayleighK = bK,
@@ -35,7 +37,7 @@ namespace {
 // NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
 class NbmConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 13;
+  static const int n_name_param = 14;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, M, K, dofs, normals, gaps;
@@ -83,6 +85,7 @@ class NbmConstruct : public E_F0mps {
       if (!opt.obstacle) fail("NBM: crossings: given without obstacle=, which it watches");
       fatal = mode == "error";
     }
+    if (nargs[13]) opt.energy = *GetAny<string*>((*nargs[13])(s));
     nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
     h->destroy();  // the old solver and any orbit computed on it
     h->solver = solver;
@@ -106,6 +109,7 @@ basicAC_F0::name_and_type NbmConstruct::name_param[] = {
     {"damping", &typeid(Matrice_Creuse<double>*)},
     {"obstacle", &typeid(ObstacleHandle*)},
     {"crossings", &typeid(string*)},
+    {"energy", &typeid(string*)},
 };
 
 class NbmConstructOp : public OneOperator {

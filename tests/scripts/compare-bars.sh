@@ -42,6 +42,13 @@ awk -F, '
       if ($col["penetration"] != 0) { print "FAIL: " id " N=" N " penetrates: " $col["penetration"]; bad = 1 }
       if (N >= 40 && $col["intervalsMax"] != 1) { print "FAIL: " id " N=" N " chatters: " $col["intervalsMax"] " contact intervals"; bad = 1 }
     }
+    # The massless boundary on the bouncing bar at N = 80 against the exact
+    # solution: no more than 2% above the errors with the trapezoidal contact forces
+    # (0.0492, 0.0558: docs/compare-bars.md); energy = "monotone" gives
+    # 0.0549, 0.0614 (docs/energy.md).
+    if (id == "bouncing nbm-massless P1" && N == 80 && !(eu0 <= 0.0502 && eu <= 0.0570)) {
+      print "FAIL: " id " N=80 errors of u(0,t), u " eu0 ", " eu " > 0.0502, 0.0570"; bad = 1
+    }
     if ($2 == "mj1" && !($col["energyDriftMax"] <= 1e-8)) { print "FAIL: " id " N=" N " energy drift " $col["energyDriftMax"]; bad = 1 }
   }
   END {

@@ -90,6 +90,10 @@ nbm_bad_case(positions-missing [=[NBM: positions: size 0, expected 1, 2 or 3 coo
 nbm_bad_case(positions-size [=[NBM: positions: size 10, expected 1, 2 or 3 coordinates per dof \(n_dofs = 11\)]=])
 nbm_bad_case(positions-nan [=[NBM: positions: non-finite coordinates]=])
 nbm_bad_case(positions-consistent [=[NBM: positions: given with mass = "consistent"]=])
+nbm_bad_case(energy-unknown [=[NBM: energy: "conserved", expected "bounded" or "monotone"]=])
+nbm_bad_case(energy-consistent [=[NBM: energy: given without the energy-stable step it controls, which needs mass = "redistributed"]=])
+nbm_bad_case(energy-beta [=[NBM: energy: given without the energy-stable step it controls]=])
+nbm_bad_valid(valid-redistributed-monotone ${NBM_BAD_DIR}/cases.edp -case valid-redistributed-monotone)
 nbm_bad_case(redistributed-explicit [=[NBM: mass: "redistributed" needs scheme "newmark"]=])
 
 # ---- nbmInit ----

@@ -1,0 +1,130 @@
+// What the massless boundary's energy-stable step costs (method.md §5.1): a
+// P1 plate (bench/plate.hpp, cells of 0.02 x 0.02, Poisson ratio NU) dropped
+// 1e-3 onto flat ground along its bottom edge and left on it, steps of DT,
+// so that its contacts open and close in most steps. Prints, in one process:
+//   - the plain contact-free Newmark step (plain_step.hpp) and its factorization;
+//   - the massless boundary with energy = "bounded" and "monotone": setup,
+//     mean step, the share of steps in which a contact switched and of those
+//     taken between the two candidates (balanced), and each step / plain step;
+//   - the same massless stepper in free flight (the ground far below): the
+//     massless step without contact forces.
+// CPU times of this thread, mean over STEPS steps after SETTLE steps of
+// settling; run with OPENBLAS_NUM_THREADS=1.
+//   nbm_energy_cost NX NY NU DT SETTLE STEPS
+//   OPENBLAS_NUM_THREADS=1 build/bench/nbm_energy_cost 100 50 0.49 1e-3 200 200
+#include <time.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "contact_problem.hpp"
+#include "massless_newmark_stepper.hpp"
+#include "plain_step.hpp"
+#include "plate.hpp"
+
+namespace {
+
+using nbm::Index;
+using nbm::Vector;
+
+double cpu_seconds() {
+  timespec t;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+struct Measured {
+  double setup = 0, step = 0;
+  double switching = 0, balanced = 0;  // shares of the timed steps
+};
+
+// The plate's bottom edge against a ground `gap` below it, energy control
+// `energy`: setup, then SETTLE steps, then STEPS timed ones.
+Measured massless(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
+                  const Eigen::MatrixXd& X, double gap, double dt, nbm::EnergyControl energy,
+                  int settle, int steps) {
+  const Index n = a.K.rows();
+  std::vector<Index> dofs;
+  std::vector<double> normals, gaps;
+  for (int i = 0; i < p.nodes_x(); ++i) {
+    dofs.push_back(2 * p.node(i, 0) + 1);
+    normals.push_back(-1);
+    gaps.push_back(gap);
+  }
+  Measured m;
+  const double start = cpu_seconds();
+  const nbm::ContactProblem problem(
+      a.M, a.K, nbm::ContactSet(n, dofs, normals, Eigen::Map<const Vector>(gaps.data(), gaps.size())),
+      {}, &X);
+  nbm::MasslessNewmarkStepper s(problem, dt, 0.25, 0.5, nbm::Damping{},
+                                nbm::ContactColumns::kAuto, energy);
+  m.setup = cpu_seconds() - start;
+  const Vector F = problem.to_internal(a.F), zero = Vector::Zero(n);
+  s.initialize(zero, zero, F);
+  for (int k = 0; k < settle; ++k) s.step(F);
+  const long balanced_before = s.balanced_steps();
+  int switching = 0;
+  const double t0 = cpu_seconds();
+  for (int k = 0; k < steps; ++k) {
+    const nbm::ActiveSet before = s.active();
+    s.step(F);
+    switching += s.active() != before;
+  }
+  m.step = (cpu_seconds() - t0) / steps;
+  m.switching = static_cast<double>(switching) / steps;
+  m.balanced = static_cast<double>(s.balanced_steps() - balanced_before) / steps;
+  return m;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 7) {
+    std::fprintf(stderr, "usage: %s NX NY NU DT SETTLE STEPS\n", argv[0]);
+    return 2;
+  }
+  nbm_bench::Plate p = nbm_bench::Plate::of_cells(std::atoi(argv[1]), std::atoi(argv[2]));
+  p.nu = std::atof(argv[3]);
+  const double dt = std::atof(argv[4]);
+  const int settle = std::atoi(argv[5]), steps = std::atoi(argv[6]);
+  if (!(p.nu > -1 && p.nu < 0.5) || !(dt > 0) || settle < 0 || steps < 1) {
+    std::fprintf(stderr, "%s: expected -1 < NU < 0.5, DT > 0, SETTLE >= 0, STEPS >= 1\n", argv[0]);
+    return 2;
+  }
+  const nbm_bench::Assembled a = nbm_bench::assemble(p);
+  const Eigen::MatrixXd X = nbm_bench::dof_positions(p);
+
+  double start = cpu_seconds();
+  auto S = nbm::make_cholesky_inverse(a.M + (0.25 * dt * dt) * a.K, "S");
+  const double factorization = cpu_seconds() - start;
+  nbm_bench::PlainNewmark plain(*S, a, dt);
+  plain.step();
+  plain.step();
+  start = cpu_seconds();
+  for (int k = 0; k < steps; ++k) plain.step();
+  const double plain_step = (cpu_seconds() - start) / steps;
+  S.reset();
+
+  std::printf("dofs %ld, contact nodes %d, nu %g, dt %g: factorization %.4f s, plain step "
+              "%.6f s\n",
+              static_cast<long>(a.K.rows()), p.nodes_x(), p.nu, dt, factorization, plain_step);
+  const Measured free_flight =
+      massless(p, a, X, 1e6, dt, nbm::EnergyControl::kBounded, settle, steps);
+  std::printf("massless, free flight:     setup %.4f s (%.2f factorizations), step %.6f s "
+              "(%.2f plain)\n",
+              free_flight.setup, free_flight.setup / factorization, free_flight.step,
+              free_flight.step / plain_step);
+  for (const auto& [energy, name] : {std::pair{nbm::EnergyControl::kBounded, "bounded"},
+                                     {nbm::EnergyControl::kMonotone, "monotone"}}) {
+    const Measured m = massless(p, a, X, 1e-3, dt, energy, settle, steps);
+    std::printf("massless, at rest, %-9s setup %.4f s (%.2f factorizations), step %.6f s "
+                "(%.2f plain, %.2f free flight); switching %.0f%%, balanced %.0f%% of the steps\n",
+                (std::string(name) + ":").c_str(), m.setup, m.setup / factorization, m.step,
+                m.step / plain_step, m.step / free_flight.step, 100 * m.switching,
+                100 * m.balanced);
+  }
+  return 0;
+}
