@@ -14,8 +14,8 @@ constexpr int kMaxIterations = 500;
 
 }  // namespace
 
-MassSolver::MassSolver(const SparseMatrix& M, std::string what)
-    : M_(M), what_(std::move(what)), inverse_diagonal_(M.diagonal()) {
+MassSolver::MassSolver(const SparseMatrix& M, std::string what, int factor_after)
+    : M_(M), what_(std::move(what)), inverse_diagonal_(M.diagonal()), factor_after_(factor_after) {
   for (Index i = 0; i < inverse_diagonal_.size(); ++i)
     if (!(inverse_diagonal_(i) > 0))
       throw NumericalError(what_ + " is not positive definite (diagonal entry " +
@@ -24,7 +24,17 @@ MassSolver::MassSolver(const SparseMatrix& M, std::string what)
   inverse_diagonal_ = inverse_diagonal_.cwiseInverse();
 }
 
+MassSolver::~MassSolver() = default;
+
+void MassSolver::factor() const { factor_ = make_cholesky_inverse(M_, what_); }
+
 void MassSolver::solve(const Vector& r, Vector& x) const {
+  if (!factor_ && factor_after_ > 0 && ++solves_ >= factor_after_) factor();
+  if (factor_) {
+    x = r;
+    factor_->solve_in_place(x);
+    return;
+  }
   const double target = kMassSolveTolerance * r.norm();
   x.setZero(r.size());
   if (target == 0) return;
@@ -50,8 +60,9 @@ void MassSolver::solve(const Vector& r, Vector& x) const {
     p_ = z_ + (rz_next / rz) * p_;
     rz = rz_next;
   }
+  factor();
   x = r;
-  make_cholesky_inverse(M_, what_)->solve_in_place(x);
+  factor_->solve_in_place(x);
 }
 
 Vector solve_mass(const SparseMatrix& M, const Vector& r, const std::string& what) {

@@ -15,6 +15,16 @@ namespace {
 // its products run from the cache, cheaper than a second solve.
 constexpr double kCachedColumnEntries = 1 << 18;
 
+// The interior mass is solved with on every step the energy-stable step
+// balances (return_to_relation): conjugate gradients take a few tens of
+// products with it (48 on the plate of bench/energy_cost.cpp), a factor one
+// substitution pair. It is factored after this many solves, if S's factor
+// (about the size of the mass's) has at most kFactoredMassEntries entries
+// (256 MB): beside the 15 GB factor of the 1e6-dof 3D block a second one
+// would not fit, and the iterations stay.
+constexpr int kFactorMassAfter = 8;
+constexpr double kFactoredMassEntries = 1 << 25;
+
 void check_massless(const ContactProblem& problem) {
   if (!problem.massless_boundary())
     throw InputError("the massless-boundary Newmark scheme needs M_CC = 0 and M_CO = 0 "
@@ -55,7 +65,9 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
   // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
   // M_OO^-1 r_O and leave the contact rows at r_C.
   interior_mass_ = problem.M() + SparseMatrix(E_C * E_C.transpose());
-  mass_solver_ = std::make_unique<MassSolver>(interior_mass_, "M (interior block)");
+  mass_solver_ = std::make_unique<MassSolver>(
+      interior_mass_, "M (interior block)",
+      S_.factor_entries() <= kFactoredMassEntries ? kFactorMassAfter : 0);
   const double entries = S_.forward_entries(E_C);
   keep_columns_ = columns == ContactColumns::kAuto
                       ? entries <= kCachedColumnEntries || 8 * entries <= S_.factor_entries()
@@ -76,23 +88,23 @@ void MasslessNewmarkStepper::start(const ContactLoad& load) {
 }
 
 Vector MasslessNewmarkStepper::scheme_state() const {
-  return bounded_ ? Vector::Constant(1, returnable_loss_) : Vector();
+  return energy_stable_ ? Vector::Constant(1, returnable_loss_) : Vector();
 }
 
 void MasslessNewmarkStepper::carry_over(const Stepper& previous) {
   const auto* massless = dynamic_cast<const MasslessNewmarkStepper*>(&previous);
-  if (bounded_ && massless) returnable_loss_ = massless->returnable_loss_;
+  if (energy_stable_ && massless) returnable_loss_ = massless->returnable_loss_;
 }
 
 void MasslessNewmarkStepper::restore_scheme_state(const Vector& state) {
-  // A state saved without it (another control, an older file): nothing kept.
-  if (state.size() == 0 || !bounded_) {
+  // A state saved without it (another scheme, an older file): nothing kept.
+  if (state.size() == 0 || !energy_stable_) {
     Stepper::restore_scheme_state(state);
     returnable_loss_ = 0;
     return;
   }
-  if (state.size() != 1 || !std::isfinite(state(0)) || state(0) < 0)
-    throw InputError("scheme state: expected one finite value >= 0 (the energy-stable step's "
+  if (state.size() != 1 || !std::isfinite(state(0)))
+    throw InputError("scheme state: expected one finite value (the energy-stable step's "
                      "returnable loss), got " + std::to_string(state.size()) + " values");
   returnable_loss_ = state(0);
 }
@@ -186,13 +198,61 @@ double MasslessNewmarkStepper::balance(const Vector& u, const Vector& v, double 
   return b;
 }
 
+void MasslessNewmarkStepper::prepare_blend(const Vector& F) {
+  // Along the way from (5.2) (mid_) to the trapezoidal step (trap_),
+  // u_lin = u_mid + theta du and v = v_mid + theta dv are affine in theta,
+  // and the return to the relation moves u_C only: u = u_lin + E_C delta.
+  // Every term of the balance of u_lin and v is a quadratic in theta,
+  // formed here once with four products with K and M (six with damping).
+  du_ = u_trap_ - u_mid_;
+  dv_ = v_trap_ - v_mid_;
+  Ku_mid_.noalias() = problem_.K() * u_mid_;
+  Kdu_.noalias() = problem_.K() * du_;
+  Mv_.noalias() = problem_.M() * v_mid_;
+  Mdv_.noalias() = problem_.M() * dv_;
+  // -F.u plus the load's change (balance()) is -F_mean.u + const.
+  load_mean_ = F;
+  double constant = 0;
+  if (F != F_) {
+    load_mean_ = 0.5 * (F + F_);
+    constant = 0.5 * (F - F_).dot(u_start_);
+  }
+  blend_[0] = 0.5 * v_mid_.dot(Mv_) + 0.5 * u_mid_.dot(Ku_mid_) - load_mean_.dot(u_mid_) + constant -
+              work_mid_;
+  blend_[1] = v_mid_.dot(Mdv_) + u_mid_.dot(Kdu_) - load_mean_.dot(du_) - (work_trap_ - work_mid_);
+  blend_[2] = 0.5 * dv_.dot(Mdv_) + 0.5 * du_.dot(Kdu_);
+  if (damped()) {  // dt v_mean' C v_mean, v_mean = (v_start + v_mid) / 2 + theta dv / 2
+    v_mean_ = 0.5 * (v_start_ + v_mid_);
+    Mv_.noalias() = C_ * v_mean_;
+    Mdv_.noalias() = C_ * dv_;
+    blend_[0] += dt_ * v_mean_.dot(Mv_);
+    blend_[1] += dt_ * v_mean_.dot(Mdv_);
+    blend_[2] += 0.25 * dt_ * dv_.dot(Mdv_);
+  }
+}
+
 double MasslessNewmarkStepper::blend(double theta, const ContactLoad& next) {
-  // The state theta of the way from the step (5.2) (mid_) to the
-  // trapezoidal one (trap_), returned to the relation; its energy balance.
-  u_ = u_mid_ + theta * (u_trap_ - u_mid_);
-  v_ = v_mid_ + theta * (v_trap_ - v_mid_);
+  // The state theta of the way from (5.2) to the trapezoidal step, returned
+  // to the relation; its balance: prepare_blend()'s quadratic for u_lin plus
+  // the return's delta = u_C - u_lin_C, 1/2 u'Ku = 1/2 u_lin'K u_lin +
+  // 1/2 delta.((K u_lin)_C + (K u)_C), and -F_mean_C.delta (work on the
+  // contact set only; delta is small, so nothing large cancels).
+  u_ = u_mid_ + theta * du_;
+  v_ = v_mid_ + theta * dv_;
+  const auto& c = problem_.contact_index();
+  const Index nc = static_cast<Index>(c.size());
+  u_C_before_.resize(nc);
+  for (Index k = 0; k < nc; ++k) u_C_before_(k) = u_(c[k]);
   boundary_.enforce(u_, next.F, next.obstacle.g, active_);
-  return balance(u_, v_, work_mid_ + theta * (work_trap_ - work_mid_), next.F);
+  boundary_.reactions(u_, next.F, reactions_);  // F_C - (K u)_C
+  double b = blend_[0] + theta * (blend_[1] + theta * blend_[2]);
+  for (Index k = 0; k < nc; ++k) {
+    const double delta = u_(c[k]) - u_C_before_(k);
+    if (delta == 0) continue;
+    const double Ku_lin = Ku_mid_(c[k]) + theta * Kdu_(c[k]);
+    b += 0.5 * delta * (Ku_lin + next.F(c[k]) - reactions_(k)) - load_mean_(c[k]) * delta;
+  }
+  return b;
 }
 
 double MasslessNewmarkStepper::balancing_fraction(const ContactLoad& next, double gain_trap,
@@ -201,6 +261,7 @@ double MasslessNewmarkStepper::balancing_fraction(const ContactLoad& next, doubl
   // start's energy plus what may be returned), with
   // f(0) <= 0 < f(1) = gain_trap: the largest theta found with f <= 0, once
   // f >= -tolerance there (energy conserved to round-off).
+  prepare_blend(next.F);
   double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_;
   double w_lo = f_lo, w_hi = gain_trap;  // the secant's values, halved on a repeated side
   int side = 0;
@@ -280,11 +341,10 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   energy_start_ += returnable_loss_;
   const double gain_trap = balance(u_, v_, work_trap_, next.F) - energy_start_;
   if (gain_trap <= tolerance) {
-    if (bounded_) returnable_loss_ = std::max(0.0, -gain_trap);
+    keep_returnable(-gain_trap);
     add_obstacle_work(work_trap_);
     return report;
   }
-  returnable_loss_ = 0;
   ++balanced_steps_;
 
   // It would gain more than allowed (5.1): the step (5.2), whose force mu / 2
@@ -307,9 +367,19 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   u_ = u_mid_ + theta * (u_trap_ - u_mid_);
   v_ = v_mid_ + theta * (v_trap_ - v_mid_);
   a_ = a_mid_ + theta * (a_trap_ - a_mid_);
-  add_obstacle_work(work_mid_ + theta * (work_trap_ - work_mid_));
+  const double work = work_mid_ + theta * (work_trap_ - work_mid_);
+  add_obstacle_work(work);
   return_to_relation(next.F, g);
+  // What the step reached, evaluated as the start was (not from
+  // blend()'s expansion), so that round-off does not accumulate over steps.
+  keep_returnable(energy_start_ - balance(u_, v_, work, next.F));
   return report;
+}
+
+void MasslessNewmarkStepper::keep_returnable(double unreached) {
+  // A rise by round-off (unreached < 0) is kept with either control, so that
+  // the next steps take it back instead of adding it up.
+  returnable_loss_ = bounded_ ? unreached : std::min(0.0, unreached);
 }
 
 }  // namespace nbm

@@ -31,7 +31,8 @@
 // of 1e6 dofs, where L holds 15 GB).
 //
 // Energy (method.md §5.1): with average acceleration (beta = 1/4,
-// gamma = 1/2) and no stiffness-proportional damping, no step gains energy.
+// gamma = 1/2) and no stiffness-proportional damping, the energy never rises
+// above its start (EnergyControl below).
 // The trapezoidal rule applies the mean of the contact forces at the step's
 // ends, (lambda_n + lambda_{n+1}) / 2, which does work lambda_n . gap_{n+1}
 // / 2 > 0 on a node that lifts off: a body resting on its support gains
@@ -107,14 +108,15 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// gamma = 1/2 and no stiffness-proportional damping.
   bool energy_stable() const { return energy_stable_; }
   /// What switching steps have lost and a later step may still return
-  /// (EnergyControl::kBounded; 0 otherwise): E_n + D_n - W_n plus it never
-  /// rises (method.md §5.1).
+  /// (EnergyControl::kBounded): E_n + D_n - W_n plus it never rises
+  /// (method.md §5.1). Negative by round-off where a step rose by round-off
+  /// (either control): the next switching steps take that back.
   double returnable_loss() const { return returnable_loss_; }
   /// Steps since the start that were taken between the two candidates
   /// (header): those on which the trapezoidal step would have gained more
   /// than allowed.
   long balanced_steps() const { return balanced_steps_; }
-  /// [returnable_loss()] with EnergyControl::kBounded, else empty.
+  /// [returnable_loss()] with the energy-stable step, else empty.
   Vector scheme_state() const override;
   /// The returnable loss of a previous massless stepper (a global budget: it
   /// outlives the contact set).
@@ -151,12 +153,18 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// change over the step, for the end state (u, v) of the current step
   /// (from u_start_, v_start_, under F_ to F).
   double balance(const Vector& u, const Vector& v, double work, const Vector& F);
+  /// The parts of the balance along the way from (5.2) to the trapezoidal
+  /// step that are quadratic in theta (blend_), for the end load F.
+  void prepare_blend(const Vector& F);
   /// u_, v_ at theta of the way from the step (5.2) to the trapezoidal one,
-  /// returned to the relation; their balance.
+  /// returned to the relation; their balance (after prepare_blend).
   double blend(double theta, const ContactLoad& next);
   /// The fraction of the way whose balance is the start's, given the
   /// trapezoidal step's gain (> tolerance); leaves u_, v_ at some blend.
   double balancing_fraction(const ContactLoad& next, double gain_trap, double tolerance);
+  /// returnable_loss_ after a switching step that ended `unreached` below
+  /// what it could reach (negative: above it, by round-off).
+  void keep_returnable(double unreached);
 
   NewmarkIteration iteration_;
   const CholeskyInverse& S_;              // the iteration matrix
@@ -175,6 +183,10 @@ class MasslessNewmarkStepper final : public NbmStepper {
   Vector lambda_start_, u_C_before_, stiffness_change_;
   // The energy-stable step's candidates: the trapezoidal step and (5.2).
   Vector rhs_, Ku_, Mv_, u_start_, v_start_, v_mean_, u_trap_, v_trap_, a_trap_, u_mid_, v_mid_, a_mid_;
+  // The way between them (prepare_blend): du, dv, K u_mid, K du, M dv, the
+  // mean load, and the quadratic's coefficients.
+  Vector du_, dv_, Ku_mid_, Kdu_, Mdv_, load_mean_, reactions_;
+  double blend_[3] = {0, 0, 0};
   double energy_start_ = 0, work_trap_ = 0, work_mid_ = 0;
   ActiveSet open_;
 };
