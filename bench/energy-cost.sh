@@ -9,11 +9,10 @@
 #   bash bench/energy-cost.sh            # about two minutes
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
-tool="$repo/build/bench/nbm_energy_cost"
-[ -x "$tool" ] || { echo "energy-cost: build first (bash scripts/build.sh)"; exit 1; }
 out="$repo/bench/RESULTS-energy.md"
 # shellcheck source=bench/provenance.sh
 source "$repo/bench/provenance.sh"
+tool=$(bench_tool nbm_energy_cost)
 export OPENBLAS_NUM_THREADS=1
 {
   echo "# The cost of the energy-stable step"
@@ -26,15 +25,8 @@ export OPENBLAS_NUM_THREADS=1
   echo "over STEPS steps after SETTLE steps. \"balanced\": the steps taken between the trapezoidal"
   echo "step and the step (5.2) of method.md, each costing a second LCP and solve."
   echo
-  for size in "50 25 0.49 1e-3 100 100" "100 50 0.49 1e-3 100 100" "200 100 0.49 1e-3 50 50" \
-              "100 50 0.3 2e-3 100 100" "400 40 0.499 5e-3 50 50"; do
-    echo '```'
-    echo "\$ nbm_energy_cost $size"
-    # shellcheck disable=SC2086
-    "$tool" $size
-    echo '```'
-    echo
-  done
+  tool_blocks "$tool" "50 25 0.49 1e-3 100 100" "100 50 0.49 1e-3 100 100" "200 100 0.49 1e-3 50 50" \
+              "100 50 0.3 2e-3 100 100" "400 40 0.499 5e-3 50 50"
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 cat "$out"

@@ -8,11 +8,10 @@
 #   bash bench/frame-cost.sh            # about a minute
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
-tool="$repo/build/bench/nbm_frame_cost"
-[ -x "$tool" ] || { echo "frame-cost: build first (bash scripts/build.sh)"; exit 1; }
 out="$repo/bench/RESULTS-frame.md"
 # shellcheck source=bench/provenance.sh
 source "$repo/bench/provenance.sh"
+tool=$(bench_tool nbm_frame_cost)
 export OPENBLAS_NUM_THREADS=1
 {
   echo "# The cost of a contact frame that follows the body"
@@ -24,14 +23,7 @@ export OPENBLAS_NUM_THREADS=1
   echo "CPU times of the thread, mean over STEPS steps. Targets: a step with a changing frame within"
   echo "1.5 steps with a fixed frame for n_c <= 500, setup within 1.3 of today's (the fixed frame's)."
   echo
-  for size in "100 10 100" "200 20 60" "400 40 40" "500 25 40"; do
-    echo '```'
-    echo "\$ nbm_frame_cost $size"
-    # shellcheck disable=SC2086
-    "$tool" $size
-    echo '```'
-    echo
-  done
+  tool_blocks "$tool" "100 10 100" "200 20 60" "400 40 40" "500 25 40"
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 cat "$out"
