@@ -506,11 +506,11 @@ Assembled two_material_bar(const Bar& b, double E_near, double E_far) {
 // to 1e-10 of m g h0. Through the impacts: soft half at the contact (E 1 vs
 // 1e6): the energy never exceeds E0 by more than 1e-6 E0, every scheme. Stiff
 // half at the contact: the explicit scheme (dt 0.9 of its critical 2.5e-5)
-// keeps E <= E0 (1 + 1e-10); the implicit schemes at dt = 1e-3 do not resolve
-// the stiff half's impact (it lasts 1e-3) and gain energy at every lift-off
-// (a known limit of the contact at t_{n+1} with average acceleration,
-// printed here: E grows to 5-10 E0 in 2 s and about 200 E0 in 10 s; at
-// dt = 1e-5 the massless boundary keeps it within 1%).
+// keeps E <= E0 (1 + 1e-10), and so does the massless boundary's
+// energy-stable step (method.md §5.1) at dt = 1e-3, which does not resolve
+// the stiff half's impact (it lasts 1e-3): the trapezoidal contact forces
+// gained energy at every lift-off there (17 E0 in 2 s). The paper's NBM
+// still does (a known limit, printed here: about 20 E0 in 2 s).
 TEST(RobustnessIllConditioned, TwoMaterialBar) {
   Bar b;
   b.N = 40;
@@ -548,8 +548,8 @@ TEST(RobustnessIllConditioned, TwoMaterialBar) {
       }
       printf("two-material bar, E near the contact %g, far %g, %s, dt %.3g: max energy %.4g E0\n",
              E_near, E_far, name(scheme), dt, e_max / e0);
-      if (E_near < E_far || scheme == Scheme::Explicit) {
-        EXPECT_LE(e_max, e0 * (1 + (scheme == Scheme::Explicit ? 1e-10 : 1e-6)));
+      if (E_near < E_far || scheme != Scheme::Newmark) {
+        EXPECT_LE(e_max, e0 * (1 + (E_near < E_far ? 1e-6 : 1e-10)));
       }
     }
 }
