@@ -103,9 +103,10 @@ void MasslessNewmarkStepper::restore_scheme_state(const Vector& state) {
     returnable_loss_ = 0;
     return;
   }
-  if (state.size() != 1 || !std::isfinite(state(0)))
-    throw InputError("scheme state: expected one finite value (the energy-stable step's "
-                     "returnable loss), got " + std::to_string(state.size()) + " values");
+  if (state.size() != 1)
+    throw InputError("scheme state: size " + std::to_string(state.size()) +
+                     ", expected 1 (the energy-stable step's returnable loss)");
+  if (!std::isfinite(state(0))) throw InputError("scheme state: non-finite entries");
   returnable_loss_ = state(0);
 }
 
