@@ -35,15 +35,15 @@
 #include <string>
 #include <tuple>
 
-#include "central_difference_stepper.hpp"
-#include "contact_problem.hpp"
+#include "contact/contact_problem.hpp"
+#include "contact/mass_redistribution.hpp"
 #include "contact_region.hpp"
-#include "mass_redistribution.hpp"
-#include "massless_newmark_stepper.hpp"
 #include "measure.hpp"
-#include "newmark_stepper.hpp"
 #include "plain_step.hpp"
 #include "scale_case.hpp"
+#include "time/central_difference_stepper.hpp"
+#include "time/massless_newmark_stepper.hpp"
+#include "time/newmark_stepper.hpp"
 
 namespace {
 

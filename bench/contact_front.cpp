@@ -26,10 +26,10 @@
 #include <string>
 #include <vector>
 
-#include "contact_problem.hpp"
-#include "newmark_stepper.hpp"
+#include "contact/contact_problem.hpp"
 #include "plain_step.hpp"
 #include "plate.hpp"
+#include "time/newmark_stepper.hpp"
 #include "trajectory.hpp"
 
 namespace {

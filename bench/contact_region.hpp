@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "solver.hpp"
+#include "api/solver.hpp"
 
 namespace nbm_bench {
 

@@ -20,10 +20,10 @@
 #include <utility>
 #include <vector>
 
-#include "contact_problem.hpp"
-#include "massless_newmark_stepper.hpp"
+#include "contact/contact_problem.hpp"
 #include "plain_step.hpp"
 #include "plate.hpp"
+#include "time/massless_newmark_stepper.hpp"
 
 namespace {
 

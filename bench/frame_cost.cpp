@@ -20,12 +20,12 @@
 #include <memory>
 #include <vector>
 
-#include "contact_problem.hpp"
-#include "following_frame_stepper.hpp"
-#include "massless_newmark_stepper.hpp"
+#include "contact/contact_problem.hpp"
 #include "obstacle/rigid_obstacle.hpp"
 #include "plain_step.hpp"
 #include "plate.hpp"
+#include "time/following_frame_stepper.hpp"
+#include "time/massless_newmark_stepper.hpp"
 
 namespace {
 

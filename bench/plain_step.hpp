@@ -8,8 +8,8 @@
 
 #include <Eigen/Dense>
 
+#include "linalg/spd_inverse.hpp"
 #include "plate.hpp"
-#include "spd_inverse.hpp"
 
 namespace nbm_bench {
 

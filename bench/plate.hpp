@@ -11,7 +11,7 @@
 #include <array>
 #include <vector>
 
-#include "solver.hpp"
+#include "api/solver.hpp"
 
 namespace nbm_bench {
 

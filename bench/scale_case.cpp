@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "central_difference_stepper.hpp"
+#include "time/central_difference_stepper.hpp"
 
 namespace nbm_bench {
 

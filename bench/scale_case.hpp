@@ -5,10 +5,10 @@
 
 #include <Eigen/Dense>
 
+#include "base/types.hpp"
 #include "block.hpp"
 #include "contact_region.hpp"
 #include "plate.hpp"
-#include "types.hpp"
 
 namespace nbm_bench {
 

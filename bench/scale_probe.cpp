@@ -19,13 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "central_difference_stepper.hpp"
-#include "contact_problem.hpp"
-#include "massless_newmark_stepper.hpp"
+#include "contact/contact_problem.hpp"
 #include "measure.hpp"
-#include "newmark_stepper.hpp"
 #include "plain_step.hpp"
 #include "scale_case.hpp"
+#include "time/central_difference_stepper.hpp"
+#include "time/massless_newmark_stepper.hpp"
+#include "time/newmark_stepper.hpp"
 #include "trajectory.hpp"
 
 namespace {

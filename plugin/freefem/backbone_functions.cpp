@@ -24,7 +24,7 @@
 #include <iostream>
 
 #include "binding.hpp"
-#include "user_backbone.hpp"
+#include "periodic/user_backbone.hpp"
 
 namespace nbm_binding {
 namespace {

@@ -9,8 +9,8 @@
 
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
-#include "solver.hpp"
-#include "user_orbit.hpp"
+#include "api/solver.hpp"
+#include "periodic/user_orbit.hpp"
 
 using namespace Fem2D;
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <tuple>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm_binding {
 namespace {

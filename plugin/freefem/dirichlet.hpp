@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "solver.hpp"
+#include "api/solver.hpp"
 
 namespace nbm_binding {
 

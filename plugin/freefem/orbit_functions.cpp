@@ -85,8 +85,8 @@
 #include <iostream>
 
 #include "binding.hpp"
-#include "user_forced_orbit.hpp"
-#include "user_orbit.hpp"
+#include "periodic/user_forced_orbit.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace nbm_binding {
 namespace {

@@ -18,7 +18,7 @@
 #include <typeinfo>
 #include <vector>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm_fuzz {
 

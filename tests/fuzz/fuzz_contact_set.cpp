@@ -13,7 +13,7 @@
 #include <set>
 #include <vector>
 
-#include "contact_set.hpp"
+#include "contact/contact_set.hpp"
 #include "fuzz_common.hpp"
 
 using nbm_fuzz::fail;

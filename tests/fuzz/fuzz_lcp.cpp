@@ -35,7 +35,7 @@
 #include <vector>
 
 #include "fuzz_common.hpp"
-#include "lcp.hpp"
+#include "linalg/lcp.hpp"
 
 using nbm::Index;
 using nbm::Matrix;

@@ -34,9 +34,9 @@
 #include <string>
 #include <vector>
 
+#include "api/solver.hpp"
 #include "dirichlet.hpp"
 #include "fuzz_common.hpp"
-#include "solver.hpp"
 
 using nbm_fuzz::fail;
 using Dense = Eigen::MatrixXd;

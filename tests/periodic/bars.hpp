@@ -7,9 +7,9 @@
 #include <memory>
 #include <vector>
 
-#include "contact_problem.hpp"
-#include "mass_redistribution.hpp"
-#include "reduced_field.hpp"
+#include "contact/contact_problem.hpp"
+#include "contact/mass_redistribution.hpp"
+#include "periodic/reduced_field.hpp"
 
 namespace nbm_test {
 

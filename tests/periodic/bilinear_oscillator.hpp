@@ -10,9 +10,9 @@
 
 #include <Eigen/Core>
 
-#include "damping.hpp"
-#include "harmonic_load.hpp"
+#include "contact/damping.hpp"
 #include "oscillators.hpp"
+#include "periodic/harmonic_load.hpp"
 #include "rk4.hpp"
 
 namespace nbm_test {

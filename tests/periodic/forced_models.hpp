@@ -13,8 +13,8 @@
 
 #include <gtest/gtest.h>
 
-#include "exact_flow.hpp"
-#include "reduced_field.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/reduced_field.hpp"
 #include "rk4.hpp"
 
 namespace nbm_test {

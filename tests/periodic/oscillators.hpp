@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "reduced_field.hpp"
+#include "periodic/reduced_field.hpp"
 
 namespace nbm_test {
 

@@ -10,11 +10,11 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "backbone.hpp"
 #include "bars.hpp"
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "oscillators.hpp"  // name_word
-#include "user_backbone.hpp"
+#include "periodic/backbone.hpp"
+#include "periodic/user_backbone.hpp"
 
 namespace {
 

@@ -7,8 +7,8 @@
 #include <cmath>
 
 #include "bars.hpp"
-#include "exact_flow.hpp"
-#include "shooting.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 

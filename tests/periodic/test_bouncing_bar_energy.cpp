@@ -12,9 +12,9 @@
 
 #include <cmath>
 
-#include "contact_problem.hpp"
-#include "exact_flow.hpp"
-#include "mass_redistribution.hpp"
+#include "contact/contact_problem.hpp"
+#include "contact/mass_redistribution.hpp"
+#include "periodic/exact_flow.hpp"
 
 namespace {
 

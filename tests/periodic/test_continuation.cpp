@@ -7,9 +7,9 @@
 #include <cmath>
 #include <string>
 
-#include "continuation.hpp"
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "oscillators.hpp"
+#include "periodic/continuation.hpp"
 
 namespace {
 

@@ -4,10 +4,10 @@
 
 #include <cmath>
 
-#include "errors.hpp"
-#include "exact_flow.hpp"
+#include "base/errors.hpp"
 #include "oscillators.hpp"
-#include "trig_sum.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/trig_sum.hpp"
 
 namespace {
 

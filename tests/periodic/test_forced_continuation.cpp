@@ -10,10 +10,10 @@
 #include <cmath>
 #include <complex>
 
+#include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
-#include "errors.hpp"
-#include "forced_continuation.hpp"
 #include "forced_models.hpp"
+#include "periodic/forced_continuation.hpp"
 
 namespace {
 

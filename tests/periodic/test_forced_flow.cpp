@@ -9,10 +9,10 @@
 #include <complex>
 #include <random>
 
-#include "errors.hpp"
-#include "exact_flow.hpp"
+#include "base/errors.hpp"
 #include "forced_models.hpp"
 #include "oscillators.hpp"
+#include "periodic/exact_flow.hpp"
 
 namespace {
 

@@ -9,11 +9,11 @@
 #include <iostream>
 #include <vector>
 
+#include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
-#include "errors.hpp"
-#include "forced_harmonic_balance.hpp"
 #include "forced_models.hpp"
-#include "forced_orbit.hpp"
+#include "periodic/forced_harmonic_balance.hpp"
+#include "periodic/forced_orbit.hpp"
 
 namespace {
 

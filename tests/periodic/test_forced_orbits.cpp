@@ -13,12 +13,12 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
-#include "errors.hpp"
 #include "forced_models.hpp"
-#include "forced_orbit.hpp"
 #include "oscillators.hpp"
-#include "periodic_orbit.hpp"
+#include "periodic/forced_orbit.hpp"
+#include "periodic/periodic_orbit.hpp"
 
 namespace {
 

@@ -6,8 +6,8 @@
 #include <iostream>
 
 #include "bars.hpp"
-#include "harmonic_balance.hpp"
 #include "oscillators.hpp"
+#include "periodic/harmonic_balance.hpp"
 
 namespace {
 

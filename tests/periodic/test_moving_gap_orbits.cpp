@@ -13,11 +13,11 @@
 #include <cmath>
 #include <complex>
 
+#include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
-#include "errors.hpp"
-#include "forced_continuation.hpp"
 #include "forced_models.hpp"
-#include "forced_orbit.hpp"
+#include "periodic/forced_continuation.hpp"
+#include "periodic/forced_orbit.hpp"
 
 namespace {
 

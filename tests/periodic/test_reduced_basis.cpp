@@ -7,8 +7,8 @@
 #include <iostream>
 
 #include "bars.hpp"
-#include "reduced_basis.hpp"
-#include "shooting.hpp"
+#include "periodic/reduced_basis.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 

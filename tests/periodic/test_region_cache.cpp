@@ -5,8 +5,8 @@
 #include <gtest/gtest.h>
 
 #include "bars.hpp"
-#include "harmonic_balance.hpp"
-#include "shooting.hpp"
+#include "periodic/harmonic_balance.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "oscillators.hpp"
-#include "shooting.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 

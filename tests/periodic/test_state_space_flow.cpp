@@ -8,10 +8,10 @@
 
 #include <cmath>
 
-#include "errors.hpp"
-#include "forced_harmonic_balance.hpp"
+#include "base/errors.hpp"
 #include "forced_models.hpp"
-#include "forced_orbit.hpp"
+#include "periodic/forced_harmonic_balance.hpp"
+#include "periodic/forced_orbit.hpp"
 
 namespace {
 

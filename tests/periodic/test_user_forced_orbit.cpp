@@ -10,8 +10,8 @@
 #include <string>
 
 #include "bars.hpp"
-#include "errors.hpp"
-#include "user_forced_orbit.hpp"
+#include "base/errors.hpp"
+#include "periodic/user_forced_orbit.hpp"
 
 namespace {
 

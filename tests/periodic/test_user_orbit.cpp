@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "bars.hpp"
-#include "user_orbit.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace {
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Line coverage of the nbm core (plugin/core/*.cpp and plugin/core/periodic/*.cpp)
-# by the unit tests (nbm_unit_tests, nbm_periodic_tests), with plain gcov
+# Line coverage of the nbm core (plugin/core/<folder>/*.cpp, every layer) by
+# the unit tests (nbm_unit_tests, nbm_periodic_tests), with plain gcov
 # (gcovr is not needed).
 #
 #   tests/unit/coverage.sh [build-dir]     default build dir: <repo>/build-coverage
@@ -13,7 +13,8 @@ set -euo pipefail
 
 src=$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)
 build=${1:-$src/build-coverage}
-objdir="$build/plugin/CMakeFiles/nbm_core.dir/core"
+# The objects of plugin/core/<folder>/x.cpp: <objdir>/<folder>/CMakeFiles/nbm_<folder>.dir/x.cpp.o
+objdir="$build/plugin/core"
 
 cmake -S "$src" -B "$build" -DNBM_COVERAGE=ON -DCMAKE_BUILD_TYPE=Debug >/dev/null
 cmake --build "$build" -j"$(nproc)" --target nbm_unit_tests nbm_periodic_tests >/dev/null
@@ -28,9 +29,10 @@ done
 # gcov -t prints the annotated sources (the .cpp and every header it pulled
 # in) to stdout: "count:line:text", with ##### or ===== for lines never run
 # and - for lines without code. Only the blocks of the core's .cpp files count.
-for f in "$src"/plugin/core/*.cpp "$src"/plugin/core/periodic/*.cpp; do
+for f in "$src"/plugin/core/*/*.cpp; do
   rel=${f#"$src"/plugin/core/}
-  (cd "$objdir/$(dirname "$rel")" && gcov -t "$(basename "$f").o" 2>/dev/null)
+  folder=$(dirname "$rel")
+  (cd "$objdir/$folder/CMakeFiles/nbm_$folder.dir" && gcov -t "$(basename "$f").o" 2>/dev/null)
 done | awk -v core="$src/plugin/core/" -v show_missed="${NBM_COVERAGE_MISSED:-0}" '
   /^ *-: *0:Source:/ {
     sub(/^ *-: *0:Source:/, "")
@@ -50,11 +52,11 @@ done | awk -v core="$src/plugin/core/" -v show_missed="${NBM_COVERAGE_MISSED:-0}
     else if (show_missed == "1") { line = part[2]; gsub(/ /, "", line); print "  missed " name ":" line }
   }
   END {
-    printf "%-32s %8s %8s %8s\n", "file (plugin/core)", "lines", "run", "cover"
+    printf "%-40s %8s %8s %8s\n", "file (plugin/core)", "lines", "run", "cover"
     for (i = 1; i <= n; ++i) {
       f = order[i]; total += lines[f]; run += hit[f]
-      printf "%-32s %8d %8d %7.1f%%\n", f, lines[f], hit[f], 100 * hit[f] / lines[f]
+      printf "%-40s %8d %8d %7.1f%%\n", f, lines[f], hit[f], 100 * hit[f] / lines[f]
     }
-    printf "%-32s %8d %8d %7.1f%%\n", "TOTAL", total, run, 100 * run / total
+    printf "%-40s %8d %8d %7.1f%%\n", "TOTAL", total, run, 100 * run / total
   }'
 exit "$status"

@@ -13,13 +13,13 @@
 #include <functional>
 #include <memory>
 
-#include "central_difference_stepper.hpp"
-#include "constrained_solver.hpp"
-#include "mass_redistribution.hpp"
-#include "massless_newmark_stepper.hpp"
-#include "newmark_stepper.hpp"
-#include "principal_block.hpp"
+#include "contact/mass_redistribution.hpp"
+#include "linalg/constrained_solver.hpp"
+#include "linalg/principal_block.hpp"
 #include "test_problems.hpp"
+#include "time/central_difference_stepper.hpp"
+#include "time/massless_newmark_stepper.hpp"
+#include "time/newmark_stepper.hpp"
 
 extern "C" {
 void* __libc_malloc(std::size_t);

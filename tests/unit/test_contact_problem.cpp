@@ -4,15 +4,15 @@
 // (ConstrainedSolver) and the SPD inverses.
 #include <gtest/gtest.h>
 
-#include "constrained_solver.hpp"
-#include "errors.hpp"
-#include "mass_solve.hpp"
-#include "newmark_stepper.hpp"
-#include "nodal_boundary.hpp"
-#include "spd_inverse.hpp"
+#include "base/errors.hpp"
+#include "contact/nodal_boundary.hpp"
+#include "linalg/constrained_solver.hpp"
+#include "linalg/mass_solve.hpp"
+#include "linalg/spd_inverse.hpp"
 #include "test_problems.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
+#include "time/newmark_stepper.hpp"
 
 namespace {
 

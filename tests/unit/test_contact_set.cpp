@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
-#include "contact_set.hpp"
-#include "errors.hpp"
+#include "base/errors.hpp"
+#include "contact/contact_set.hpp"
 #include "test_util.hpp"
 
 namespace {

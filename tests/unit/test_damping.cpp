@@ -11,9 +11,9 @@
 #include <cmath>
 #include <string>
 
-#include "contact_problem.hpp"
-#include "errors.hpp"
-#include "solver.hpp"
+#include "api/solver.hpp"
+#include "base/errors.hpp"
+#include "contact/contact_problem.hpp"
 #include "test_problems.hpp"
 #include "test_util.hpp"
 

@@ -8,12 +8,12 @@
 #include <cmath>
 #include <random>
 
-#include "active_set.hpp"
-#include "constrained_solver.hpp"
-#include "gram.hpp"
-#include "principal_block.hpp"
-#include "schur_factor.hpp"
-#include "spd_inverse.hpp"
+#include "linalg/active_set.hpp"
+#include "linalg/constrained_solver.hpp"
+#include "linalg/gram.hpp"
+#include "linalg/principal_block.hpp"
+#include "linalg/schur_factor.hpp"
+#include "linalg/spd_inverse.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

@@ -7,8 +7,8 @@
 
 #include <cmath>
 
+#include "base/errors.hpp"
 #include "dirichlet.hpp"
-#include "errors.hpp"
 #include "test_problems.hpp"
 #include "test_util.hpp"
 

@@ -9,12 +9,12 @@
 #include <memory>
 #include <tuple>
 
-#include "contact_problem.hpp"
+#include "base/errors.hpp"
+#include "contact/contact_problem.hpp"
 #include "curved_problems.hpp"
-#include "errors.hpp"
-#include "following_frame_stepper.hpp"
 #include "obstacle/rigid_obstacle.hpp"
 #include "test_util.hpp"
+#include "time/following_frame_stepper.hpp"
 
 namespace {
 

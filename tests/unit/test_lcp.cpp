@@ -2,8 +2,8 @@
 // residuals on large problems, warm starts, and error handling.
 #include <gtest/gtest.h>
 
-#include "errors.hpp"
-#include "lcp.hpp"
+#include "base/errors.hpp"
+#include "linalg/lcp.hpp"
 #include "test_util.hpp"
 
 namespace {

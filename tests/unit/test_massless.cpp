@@ -7,7 +7,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

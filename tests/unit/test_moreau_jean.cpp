@@ -3,7 +3,7 @@
 // w+ = -e w- on every impulsive step, bounded penetration, e = 0 sticks.
 #include <gtest/gtest.h>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

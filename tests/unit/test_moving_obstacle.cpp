@@ -25,7 +25,7 @@
 #include <functional>
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

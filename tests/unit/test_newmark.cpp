@@ -4,7 +4,7 @@
 // dissipation of the other parameters, and the step reports.
 #include <gtest/gtest.h>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "solver.hpp"
+#include "api/solver.hpp"
 
 namespace nbm_test {
 

@@ -7,8 +7,8 @@
 
 #include <string>
 
-#include "errors.hpp"
-#include "solver.hpp"
+#include "api/solver.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 #include "test_stepping.hpp"
 #include "test_util.hpp"
 

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
-#include "errors.hpp"
-#include "solver.hpp"
+#include "api/solver.hpp"
+#include "base/errors.hpp"
 #include "test_problems.hpp"
 #include "test_util.hpp"
 

@@ -9,13 +9,13 @@
 #include <memory>
 #include <vector>
 
-#include "central_difference_stepper.hpp"
-#include "contact_problem.hpp"
-#include "mass_redistribution.hpp"
-#include "massless_newmark_stepper.hpp"
-#include "moreau_jean_stepper.hpp"
-#include "newmark_stepper.hpp"
+#include "contact/contact_problem.hpp"
+#include "contact/mass_redistribution.hpp"
 #include "test_problems.hpp"
+#include "time/central_difference_stepper.hpp"
+#include "time/massless_newmark_stepper.hpp"
+#include "time/moreau_jean_stepper.hpp"
+#include "time/newmark_stepper.hpp"
 
 namespace nbm_test {
 

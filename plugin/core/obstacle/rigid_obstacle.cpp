@@ -1,9 +1,9 @@
-#include "rigid_obstacle.hpp"
+#include "obstacle/rigid_obstacle.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

@@ -1,4 +1,4 @@
-#include "backbone.hpp"
+#include "periodic/backbone.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

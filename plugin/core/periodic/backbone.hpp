@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "continuation.hpp"
-#include "user_backbone.hpp"
+#include "periodic/continuation.hpp"
+#include "periodic/user_backbone.hpp"
 
 namespace nbm {
 

@@ -1,8 +1,8 @@
-#include "continuation.hpp"
+#include "periodic/continuation.hpp"
 
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 

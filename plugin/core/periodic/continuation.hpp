@@ -5,7 +5,7 @@
 // follows a family through folds of that parameter.
 #pragma once
 
-#include "shooting.hpp"
+#include "periodic/shooting.hpp"
 
 namespace nbm {
 

@@ -1,10 +1,10 @@
-#include "exact_flow.hpp"
+#include "periodic/exact_flow.hpp"
 
 #include <cmath>
 #include <string>
 
-#include "errors.hpp"
-#include "state_space_flow.hpp"
+#include "base/errors.hpp"
+#include "periodic/state_space_flow.hpp"
 
 namespace nbm {
 namespace {

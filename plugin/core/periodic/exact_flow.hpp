@@ -12,10 +12,10 @@
 #include <memory>
 #include <vector>
 
-#include "damping.hpp"
-#include "harmonic_load.hpp"
-#include "reduced_field.hpp"
-#include "switching.hpp"
+#include "contact/damping.hpp"
+#include "periodic/harmonic_load.hpp"
+#include "periodic/reduced_field.hpp"
+#include "periodic/switching.hpp"
 
 namespace nbm {
 

@@ -1,4 +1,4 @@
-#include "forced_continuation.hpp"
+#include "periodic/forced_continuation.hpp"
 
 #include <algorithm>
 #include <cstddef>
@@ -11,8 +11,8 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
-#include "errors.hpp"
-#include "gauss_newton.hpp"
+#include "base/errors.hpp"
+#include "periodic/gauss_newton.hpp"
 
 namespace nbm {
 namespace {

@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "damping.hpp"
-#include "forced_orbit.hpp"
-#include "harmonic_load.hpp"
-#include "periodic_orbit.hpp"
+#include "contact/damping.hpp"
+#include "periodic/forced_orbit.hpp"
+#include "periodic/harmonic_load.hpp"
+#include "periodic/periodic_orbit.hpp"
 
 namespace nbm {
 

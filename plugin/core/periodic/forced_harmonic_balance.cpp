@@ -1,13 +1,13 @@
-#include "forced_harmonic_balance.hpp"
+#include "periodic/forced_harmonic_balance.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
-#include "errors.hpp"
-#include "forced_orbit.hpp"
-#include "trig_galerkin.hpp"
+#include "base/errors.hpp"
+#include "periodic/forced_orbit.hpp"
+#include "periodic/trig_galerkin.hpp"
 
 namespace nbm {
 namespace {

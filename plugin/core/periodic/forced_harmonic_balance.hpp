@@ -22,8 +22,8 @@
 // decide the stability.
 #pragma once
 
-#include "exact_flow.hpp"
-#include "harmonic_balance.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/harmonic_balance.hpp"
 
 namespace nbm {
 

@@ -1,10 +1,10 @@
-#include "forced_orbit.hpp"
+#include "periodic/forced_orbit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 

@@ -14,9 +14,9 @@
 // the parameter derivative of the map is what a bordered corrector adds.
 #pragma once
 
-#include "exact_flow.hpp"
-#include "gauss_newton.hpp"
-#include "periodic_orbit.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/gauss_newton.hpp"
+#include "periodic/periodic_orbit.hpp"
 
 namespace nbm {
 

@@ -1,4 +1,4 @@
-#include "gauss_newton.hpp"
+#include "periodic/gauss_newton.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 

@@ -19,8 +19,8 @@
 #include <string>
 #include <vector>
 
-#include "periodic_defaults.hpp"
-#include "types.hpp"
+#include "base/types.hpp"
+#include "periodic/periodic_defaults.hpp"
 
 namespace nbm {
 

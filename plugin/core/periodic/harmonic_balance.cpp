@@ -1,12 +1,12 @@
-#include "harmonic_balance.hpp"
+#include "periodic/harmonic_balance.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
-#include "errors.hpp"
-#include "trig_galerkin.hpp"
+#include "base/errors.hpp"
+#include "periodic/trig_galerkin.hpp"
 
 namespace nbm {
 

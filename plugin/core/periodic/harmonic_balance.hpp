@@ -23,8 +23,8 @@
 // solver (forced_harmonic_balance.hpp).
 #pragma once
 
-#include "periodic_orbit.hpp"
-#include "shooting.hpp"
+#include "periodic/periodic_orbit.hpp"
+#include "periodic/shooting.hpp"
 
 namespace nbm {
 

@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <vector>
 
-#include "types.hpp"
+#include "base/types.hpp"
 
 namespace nbm {
 

@@ -9,14 +9,14 @@
 #include <string>
 #include <vector>
 
-#include "contact_problem.hpp"
-#include "exact_flow.hpp"
-#include "harmonic_balance.hpp"
-#include "periodic_orbit.hpp"
-#include "reduced_basis.hpp"
-#include "reduced_field.hpp"
-#include "shooting.hpp"
-#include "user_orbit.hpp"
+#include "contact/contact_problem.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/harmonic_balance.hpp"
+#include "periodic/periodic_orbit.hpp"
+#include "periodic/reduced_basis.hpp"
+#include "periodic/reduced_field.hpp"
+#include "periodic/shooting.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace nbm {
 

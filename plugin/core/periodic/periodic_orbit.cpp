@@ -1,4 +1,4 @@
-#include "periodic_orbit.hpp"
+#include "periodic/periodic_orbit.hpp"
 
 #include <algorithm>
 #include <cmath>

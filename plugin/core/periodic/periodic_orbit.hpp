@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "exact_flow.hpp"
+#include "periodic/exact_flow.hpp"
 
 namespace nbm {
 

@@ -1,4 +1,4 @@
-#include "reduced_basis.hpp"
+#include "periodic/reduced_basis.hpp"
 
 #include <cmath>
 #include <random>
@@ -7,7 +7,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

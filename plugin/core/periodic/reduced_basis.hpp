@@ -9,8 +9,8 @@
 // exactly (range(Psi) holds the interior response to any contact state).
 #pragma once
 
-#include "contact_problem.hpp"
-#include "reduced_field.hpp"
+#include "contact/contact_problem.hpp"
+#include "periodic/reduced_field.hpp"
 
 namespace nbm {
 

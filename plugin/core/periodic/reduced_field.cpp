@@ -1,4 +1,4 @@
-#include "reduced_field.hpp"
+#include "periodic/reduced_field.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "errors.hpp"
-#include "lcp.hpp"
+#include "base/errors.hpp"
+#include "linalg/lcp.hpp"
 
 namespace nbm {
 namespace {

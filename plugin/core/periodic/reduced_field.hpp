@@ -31,9 +31,9 @@
 
 #include <Eigen/Cholesky>
 
-#include "active_set.hpp"
-#include "contact_problem.hpp"
-#include "types.hpp"
+#include "base/types.hpp"
+#include "contact/contact_problem.hpp"
+#include "linalg/active_set.hpp"
 
 namespace nbm {
 

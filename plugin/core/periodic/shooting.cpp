@@ -1,11 +1,11 @@
-#include "shooting.hpp"
+#include "periodic/shooting.hpp"
 
 #include <cmath>
 #include <limits>
 #include <string>
 
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

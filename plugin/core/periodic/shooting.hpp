@@ -16,8 +16,8 @@
 
 #include <optional>
 
-#include "gauss_newton.hpp"
-#include "periodic_orbit.hpp"
+#include "periodic/gauss_newton.hpp"
+#include "periodic/periodic_orbit.hpp"
 
 namespace nbm {
 

@@ -1,4 +1,4 @@
-#include "state_space_flow.hpp"
+#include "periodic/state_space_flow.hpp"
 
 #include <cmath>
 #include <string>
@@ -6,7 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

@@ -16,7 +16,7 @@
 #include <complex>
 #include <memory>
 
-#include "exact_flow.hpp"
+#include "periodic/exact_flow.hpp"
 
 namespace nbm {
 

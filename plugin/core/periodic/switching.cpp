@@ -1,11 +1,11 @@
-#include "switching.hpp"
+#include "periodic/switching.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "errors.hpp"
+#include "base/errors.hpp"
 
 namespace nbm {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <optional>
 
-#include "types.hpp"
+#include "base/types.hpp"
 
 namespace nbm {
 

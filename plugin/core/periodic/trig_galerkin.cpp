@@ -1,12 +1,12 @@
-#include "trig_galerkin.hpp"
+#include "periodic/trig_galerkin.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "errors.hpp"
-#include "periodic_defaults.hpp"
-#include "trig_sum.hpp"
+#include "base/errors.hpp"
+#include "periodic/periodic_defaults.hpp"
+#include "periodic/trig_sum.hpp"
 
 namespace nbm {
 namespace {

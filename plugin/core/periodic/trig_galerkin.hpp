@@ -18,8 +18,8 @@
 
 #include <map>
 
-#include "exact_flow.hpp"
-#include "reduced_field.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/reduced_field.hpp"
 
 namespace nbm {
 

@@ -1,4 +1,4 @@
-#include "trig_sum.hpp"
+#include "periodic/trig_sum.hpp"
 
 #include <cmath>
 

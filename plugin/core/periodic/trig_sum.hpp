@@ -7,7 +7,7 @@
 // changes sign is switching.hpp's.
 #pragma once
 
-#include "switching.hpp"
+#include "periodic/switching.hpp"
 
 namespace nbm {
 

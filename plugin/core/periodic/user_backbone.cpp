@@ -1,13 +1,13 @@
-#include "user_backbone.hpp"
+#include "periodic/user_backbone.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "backbone.hpp"
-#include "contact_problem.hpp"
-#include "errors.hpp"
-#include "orbit_model.hpp"
+#include "base/errors.hpp"
+#include "contact/contact_problem.hpp"
+#include "periodic/backbone.hpp"
+#include "periodic/orbit_model.hpp"
 
 namespace nbm {
 

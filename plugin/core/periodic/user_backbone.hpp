@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "periodic_defaults.hpp"
+#include "periodic/periodic_defaults.hpp"
 
 namespace nbm {
 

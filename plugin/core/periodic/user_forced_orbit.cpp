@@ -1,16 +1,16 @@
-#include "user_forced_orbit.hpp"
+#include "periodic/user_forced_orbit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
 
-#include "errors.hpp"
-#include "forced_continuation.hpp"
-#include "forced_harmonic_balance.hpp"
-#include "forced_orbit.hpp"
-#include "orbit_model.hpp"
-#include "sparse_input.hpp"
+#include "base/errors.hpp"
+#include "linalg/sparse_input.hpp"
+#include "periodic/forced_continuation.hpp"
+#include "periodic/forced_harmonic_balance.hpp"
+#include "periodic/forced_orbit.hpp"
+#include "periodic/orbit_model.hpp"
 
 namespace nbm {
 namespace {

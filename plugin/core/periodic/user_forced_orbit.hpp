@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "periodic_defaults.hpp"
-#include "solver.hpp"
-#include "user_orbit.hpp"
+#include "api/solver.hpp"
+#include "periodic/periodic_defaults.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace nbm {
 

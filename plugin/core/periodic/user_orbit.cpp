@@ -1,13 +1,13 @@
-#include "user_orbit.hpp"
+#include "periodic/user_orbit.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
-#include "errors.hpp"
-#include "harmonic_balance.hpp"
-#include "continuation.hpp"
-#include "orbit_model.hpp"
+#include "base/errors.hpp"
+#include "periodic/continuation.hpp"
+#include "periodic/harmonic_balance.hpp"
+#include "periodic/orbit_model.hpp"
 
 namespace nbm {
 namespace {

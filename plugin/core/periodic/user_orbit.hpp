@@ -1,5 +1,5 @@
 // Periodic orbits on the user's dofs: the front end of the periodic-orbit
-// solvers for the FreeFEM binding. Like solver.hpp, free of Eigen and
+// solvers for the FreeFEM binding. Like api/solver.hpp, free of Eigen and
 // FreeFEM types.
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "periodic_defaults.hpp"
+#include "periodic/periodic_defaults.hpp"
 
 namespace nbm {
 

@@ -1,0 +1,55 @@
+// The NBM schemes (method.md §3-5, §8): the contact dofs are never
+// integrated; u_C, v_C and a_C follow the nodal boundary relation of the
+// active set, u_C = A u_O + e(t), v_C = A v_O + e'(t), a_C = A a_O + e''(t).
+// This class holds the relation and completes every step with it; a scheme
+// (Newmark, massless Newmark, central differences) implements advance(),
+// solve_acceleration() and mass().
+#pragma once
+
+#include "contact/nodal_boundary.hpp"
+#include "time/stepper.hpp"
+
+namespace nbm {
+
+class NbmStepper : public Stepper {
+ public:
+  using Stepper::reactions;
+  /// lambda = F_C - (K u)_C (method.md §2).
+  void reactions(Vector& lambda) const override { boundary_.reactions(u_, F_, lambda); }
+
+ protected:
+  NbmStepper(const ContactProblem& problem, double dt, const Damping& damping);
+
+  /// u_C from the LCP, v_C = A v_O + e', then solve_acceleration.
+  void start(const ContactLoad& load) override;
+  /// advance_interior(), then v_C and a_C from the nodal boundary relation of
+  /// the new active set.
+  StepReport advance(const ContactLoad& next) final;
+  /// The scheme's step of u_, v_, a_ and active_; their contact parts are
+  /// completed afterwards.
+  virtual StepReport advance_interior(const ContactLoad& next) = 0;
+  /// Solves mass() a = F - K u + G^T mu, G a = h'' for the current active set
+  /// and the load and obstacle of `load` (the current ones).
+  virtual void solve_acceleration(const ContactLoad& load) = 0;
+  bool exact_impenetrability() const override { return true; }
+
+  /// Right-hand sides of G x = h (method.md §4, §8) for the displacement, the
+  /// velocity and the acceleration: g, g', g'' on closed contacts, F_C and
+  /// its rates on open ones.
+  void displacement_constraint(const ContactLoad& load, const ActiveSet& active,
+                               Vector& h) const;
+  void rate_constraint(const ContactLoad& load, const ActiveSet& active, Vector& h) const;
+  void acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
+                               Vector& h) const;
+
+  NodalBoundary boundary_;
+
+ private:
+  /// h_k = closed(k) on closed contacts, (*open)(c_k) (0 if null) on open ones.
+  void constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
+                  Vector& h) const;
+
+  Vector h_;  // workspace: the constraints of the rates
+};
+
+}  // namespace nbm

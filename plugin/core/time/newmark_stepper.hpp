@@ -1,0 +1,77 @@
+// Implicit Newmark on the reduced NBM equations (method.md §5), with the
+// active set consistent at t_{n+1}. With damping C (method.md §9) the
+// constrained form (4.3) gains C v: the iteration matrix is
+// M + gamma dt C + beta dt^2 K and the right-hand side -C v~; the contact
+// dofs' damping forces reach the interior through P^T, like their inertia.
+#pragma once
+
+#include <memory>
+
+#include "linalg/constrained_solver.hpp"
+#include "time/nbm_stepper.hpp"
+#include "time/newmark_iteration.hpp"
+
+namespace nbm {
+
+struct NewmarkParameters {
+  double beta = 0.25;  ///< average acceleration by default: energy conserving
+  double gamma = 0.5;
+  int max_active_set_iterations = 25;
+};
+
+class NewmarkStepper final : public NbmStepper {
+ public:
+  /// Factors S = M + gamma dt C + beta dt^2 K once. Throws InputError on
+  /// beta, gamma out of (0, 1/2] x [1/2, 1] or bad damping, NumericalError if
+  /// S is not positive definite.
+  NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {},
+                 const Damping& damping = {});
+
+  using Stepper::step;
+
+  const NewmarkParameters& parameters() const { return parameters_; }
+
+ protected:
+  const SparseMatrix& mass() const override { return problem_.M(); }
+  void solve_acceleration(const ContactLoad& load) override;
+  StepReport advance_interior(const ContactLoad& next) override;
+
+ private:
+  /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
+  /// S u = M u_hat + beta dt^2 (F - C v~) + G^T mu, G u = h, G a = h''
+  /// (method.md §8, §9),
+  /// where u_hat is u_pred with its contact part from the nodal boundary
+  /// relation of that set (G u_hat = h - beta dt^2 h''), solved in
+  /// acceleration form (S a = F - C v~ - K u_hat + G^T mu',
+  /// u = u_hat + beta dt^2 a):
+  /// a is never formed as (u - u_hat)/(beta dt^2), which loses every digit
+  /// when beta dt^2 |a| is below the round-off of u.
+  void solve_step(const ActiveSet& active, const ContactLoad& next, Vector& u_next,
+                  Vector& a_next);
+
+  /// A solve kept for the fallback, with how far its set is from being
+  /// consistent (NodalBoundary::violation).
+  struct Candidate {
+    ActiveSet set;
+    Vector u_next, a_next;
+    double violation = 0;
+  };
+  /// Appends a candidate to the tried_ ones; the slots are reused from step
+  /// to step, so that keeping candidates does not allocate once warm.
+  Candidate& add_candidate();
+  /// Step of the fallback (§5), when no active set tried was consistent.
+  void fall_back(const ContactLoad& next, StepReport& report);
+
+  NewmarkParameters parameters_;
+  NewmarkIteration iteration_;
+  ConstrainedSolver solver_;  // with the iteration matrix
+  // Workspaces of a step (sized by the first one): u_pred_, v_pred_ the
+  // predictors; u_hat_, h_, r_ of solve_step; the guessed active set and the
+  // solution for it; the candidates tried_[0 .. n_tried_).
+  Vector u_pred_, v_pred_, u_hat_, h_, h_accel_, r_, u_next_, a_next_, u_lcp_;
+  ActiveSet guess_, predictor_set_;
+  std::vector<Candidate> tried_;
+  std::size_t n_tried_ = 0;
+};
+
+}  // namespace nbm
