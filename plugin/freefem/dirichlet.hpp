@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "api/solver.hpp"
+#include "linalg/coo_matrix.hpp"
 
 namespace nbm_binding {
 

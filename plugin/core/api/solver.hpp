@@ -8,18 +8,11 @@
 #include <string>
 #include <vector>
 
+#include "linalg/coo_matrix.hpp"
+
 namespace nbm {
 
 class ContactProblem;
-
-/// A sparse matrix in coordinate form, as FreeFEM hands it over. With
-/// `lower_half` only the lower triangle is stored (FreeFEM's sym=1).
-struct CooMatrix {
-  long rows = 0, cols = 0;
-  std::vector<long> i, j;
-  std::vector<double> value;
-  bool lower_half = false;
-};
 
 /// A function of time, w(t) = offset + rate t + accel t^2 / 2
 /// + sum_j (c_j cos(omega_j t) + s_j sin(omega_j t)); `harmonics` holds the

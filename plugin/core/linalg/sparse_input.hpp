@@ -1,10 +1,10 @@
-// A user's matrix in coordinate form (CooMatrix, solver.hpp: what FreeFEM hands
-// over) as a sparse matrix, checked. Shared by the Solver and the front ends
+// A user's matrix in coordinate form (CooMatrix, coo_matrix.hpp: what FreeFEM
+// hands over) as a sparse matrix, checked. Shared by the Solver and the front ends
 // of the periodic solvers.
 #pragma once
 
-#include "api/solver.hpp"
 #include "base/types.hpp"
+#include "linalg/coo_matrix.hpp"
 
 namespace nbm {
 

@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "api/solver.hpp"
+#include "linalg/coo_matrix.hpp"
 #include "periodic/periodic_defaults.hpp"
 #include "periodic/user_orbit.hpp"
 
