@@ -154,11 +154,10 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
   active_.assign(n_c_, false);
 }
 
-Matrix FollowingFrameStepper::positions_of(const Vector& u) const {
-  Matrix p = X_;
+void FollowingFrameStepper::positions_of(const Vector& u, Matrix& p) const {
+  p = X_;
   for (Index k = 0; k < n_c_; ++k)
     for (int j = 0; j < d_; ++j) p(k, j) += u(node_dofs_[k * d_ + j]);
-  return p;
 }
 
 void FollowingFrameStepper::place_nodes(const Matrix& p, Vector& u) const {
@@ -166,11 +165,12 @@ void FollowingFrameStepper::place_nodes(const Matrix& p, Vector& u) const {
     for (int j = 0; j < d_; ++j) u(node_dofs_[k * d_ + j]) = p(k, j) - X_(k, j);
 }
 
-int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& compliance,
-                                       double scale, double t, Matrix& p) {
+int FollowingFrameStepper::solve_frame(const Matrix& p_free, const Matrix* Z, double scale,
+                                       double t, Matrix& p) {
   int iterations = 0;
   const Index m = n_c_ * d_;
-  Vector q(n_c_), shift(m);
+  q_.resize(n_c_);
+  shift_.resize(m);
   // The LCP runs on the candidates only: the nodes closed before and those
   // the step would bring into the obstacle. A node left out has lambda = 0
   // and must end with a gap >= 0 under the candidates' forces, which is
@@ -179,15 +179,11 @@ int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& 
   // candidates, not with n_c (header).
   // Both the candidates and the LCP's warm start come from the state's
   // closed contacts (active_), so that a restored state steps on bit for bit.
-  std::vector<char> candidate(n_c_, 0);
+  candidate_.resize(n_c_);
   for (Index k = 0; k < n_c_; ++k) {
-    candidate[k] = active_[k];
+    candidate_[k] = active_[k];
     open_guess_[k] = !active_[k];
   }
-  std::vector<Index> C;
-  std::vector<bool> guess;
-  Matrix ZN, A;
-  Vector q_C;
   double last_move = std::numeric_limits<double>::infinity();
   const double tolerance = options_.frame_tolerance * size_;
   for (int it = 0; it < options_.max_frame_iterations; ++it) {
@@ -201,49 +197,57 @@ int FollowingFrameStepper::solve_frame(const Matrix& p_free, const NodeColumns& 
         throw NumericalError("obstacle (" + obstacle_->describe() + "): no normal at contact node " +
                              std::to_string(k) + " (zero or non-finite gradient)");
       for (int j = 0; j < d_; ++j) normals_(k, j) = -o.grad(j) / g;
-      q(k) = o.phi / g - normals_.row(k).dot(p_free.row(k) - p.row(k));
-      if (q(k) <= 0) candidate[k] = 1;
+      q_(k) = o.phi / g - normals_.row(k).dot(p_free.row(k) - p.row(k));
+      if (q_(k) <= 0) candidate_[k] = 1;
     }
     LcpResult lcp;
     for (bool grown = true; grown;) {
-      C.clear();
+      C_nodes_.clear();
       for (Index k = 0; k < n_c_; ++k)
-        if (candidate[k]) C.push_back(k);
-      const Index c = static_cast<Index>(C.size());
+        if (candidate_[k]) C_nodes_.push_back(k);
+      const Index c = static_cast<Index>(C_nodes_.size());
       // Z N_C and N_C' Z N_C with N block diagonal: d m c and d c^2 work.
-      ZN.resize(m, c);
-      A.resize(c, c);
-      q_C.resize(c);
-      guess.resize(c);
+      ZN_.resize(m, c);
+      A_.resize(c, c);
+      q_C_.resize(c);
+      guess_.resize(c);
       for (Index b = 0; b < c; ++b) {
-        ZN.col(b).noalias() = compliance(C[b]) * normals_.row(C[b]).transpose();
-        q_C(b) = q(C[b]);
-        guess[b] = open_guess_[C[b]];
+        const Index node = C_nodes_[b];
+        if (Z) {
+          ZN_.col(b).noalias() = Z->middleCols(node * d_, d_) * normals_.row(node).transpose();
+        } else {  // the start only: K_NN^-1 N e_b, one column
+          e_N_.setZero(m);
+          e_N_.segment(node * d_, d_) = normals_.row(node).transpose();
+          ZN_.col(b) = K_NN_.solve(e_N_);
+        }
+        q_C_(b) = q_(node);
+        guess_[b] = open_guess_[node];
       }
       for (Index a = 0; a < c; ++a)
         for (Index b = 0; b < c; ++b)
-          A(a, b) = scale * normals_.row(C[a]).dot(ZN.col(b).segment(C[a] * d_, d_));
-      A = 0.5 * (A + A.transpose()).eval();  // symmetric to the last bit
-      lcp = c > 0 ? LcpSolver::solve(A, q_C, guess) : LcpResult{};
-      shift.setZero();
-      if (c > 0) shift.noalias() = scale * (ZN * lcp.z);
+          A_(a, b) = scale * normals_.row(C_nodes_[a]).dot(ZN_.col(b).segment(C_nodes_[a] * d_, d_));
+      for (Index a = 0; a < c; ++a)  // symmetric to the last bit
+        for (Index b = a + 1; b < c; ++b) A_(a, b) = A_(b, a) = 0.5 * (A_(a, b) + A_(b, a));
+      lcp = c > 0 ? LcpSolver::solve(A_, q_C_, guess_) : LcpResult{};
+      shift_.setZero();
+      if (c > 0) shift_.noalias() = scale * (ZN_ * lcp.z);
       grown = false;
       for (Index k = 0; k < n_c_; ++k)
-        if (!candidate[k] && q(k) + normals_.row(k).dot(shift.segment(k * d_, d_)) < 0)
-          candidate[k] = 1, grown = true;
+        if (!candidate_[k] && q_(k) + normals_.row(k).dot(shift_.segment(k * d_, d_)) < 0)
+          candidate_[k] = 1, grown = true;
     }
     // lcp.active: z = lambda = 0 (open contacts), the warm start of the
     // next iteration and step.
     lambda_.setZero(n_c_);
     std::fill(open_guess_.begin(), open_guess_.end(), true);
-    for (std::size_t b = 0; b < C.size(); ++b) {
-      lambda_(C[b]) = lcp.z(b);
-      open_guess_[C[b]] = lcp.active[b];
+    for (std::size_t b = 0; b < C_nodes_.size(); ++b) {
+      lambda_(C_nodes_[b]) = lcp.z(b);
+      open_guess_[C_nodes_[b]] = lcp.active[b];
     }
     double move = 0;
     for (Index k = 0; k < n_c_; ++k)
       for (int j = 0; j < d_; ++j) {
-        const double next = p_free(k, j) - shift(k * d_ + j);
+        const double next = p_free(k, j) - shift_(k * d_ + j);
         move = std::max(move, std::abs(next - p(k, j)));
         p(k, j) = next;
       }
@@ -263,7 +267,8 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
   // Against the true obstacle: every contact node outside it (a state a run
   // reached, continued under a new contact set, may bring nodes that crossed
   // it: they are pushed out by the relation below).
-  const Matrix p0 = positions_of(u_);
+  Matrix p0;
+  positions_of(u_, p0);
   for (Index k = 0; k < n_c_ && fresh_start(); ++k) {
     const Eigen::Vector3d x = point(p0, k);
     const double phi = obstacle_->at(x.data(), t_).phi;
@@ -281,7 +286,7 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
   for (Index k = 0; k < n_c_; ++k)
     for (int j = 0; j < d_; ++j) p_free(k, j) += free_shift(k * d_ + j);
   std::fill(active_.begin(), active_.end(), false);
-  solve_frame(p_free, [this](Index node) { return static_columns(node); }, 1.0, t_, p);
+  solve_frame(p_free, nullptr, 1.0, t_, p);
   place_nodes(p, u_);
   for (Index k = 0; k < n_c_; ++k) active_[k] = lambda_(k) != 0;
   // a_O = M_OO^-1 (F - K u - C v)_O; the massless nodes' a_N are Newmark's
@@ -300,11 +305,11 @@ void FollowingFrameStepper::start(const ContactLoad& load) {
 double FollowingFrameStepper::obstacle_power(const Vector& lambda, const Vector& u, double t) const {
   // -lambda . g'(t), g' = (d phi / dt) / |grad phi| at each node (method.md §8).
   if (obstacle_->fixed()) return 0;
-  const Matrix p = positions_of(u);
   double power = 0;
   for (Index k = 0; k < n_c_; ++k) {
     if (lambda(k) == 0) continue;
-    const Eigen::Vector3d x = point(p, k);
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int j = 0; j < d_; ++j) x(j) = X_(k, j) + u(node_dofs_[k * d_ + j]);
     const ObstaclePoint o = obstacle_->at(x.data(), t);
     power -= lambda(k) * o.phi_t / o.grad.norm();
   }
@@ -316,45 +321,46 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   const double t1 = t_ + dt;
   const double power_before = obstacle_power(lambda_, u_, t_);
 
-  const Vector u_hat = u_ + dt * v_ + (dt * dt * (0.5 - options_.beta)) * a_;
-  const Vector v_pred = v_ + (dt * (1 - options_.gamma)) * a_;
-  Vector a = next.F - problem_.K() * u_hat;
-  if (damped()) a -= C_ * v_pred;
+  u_hat_ = u_ + dt * v_ + (dt * dt * (0.5 - options_.beta)) * a_;
+  v_pred_ = v_ + (dt * (1 - options_.gamma)) * a_;
+  Vector& a = accel_;  // the new acceleration, built in place
+  a = next.F;
+  a.noalias() -= problem_.K() * u_hat_;
+  if (damped()) a.noalias() -= C_ * v_pred_;
   // The free step's acceleration on the contact nodes, (S^-1 r)_N: Y' y with
   // y = L^-1 P r, or from the whole solve.
-  Vector free_N(n_c_ * d_);
+  free_N_.resize(n_c_ * d_);
   if (keep_columns_) {
     S_->forward_in_place(a);
-    free_N.noalias() = Y_.transpose() * a;
+    free_N_.noalias() = Y_.transpose() * a;
   } else {
     S_->solve_in_place(a);
-    for (Index i = 0; i < n_c_ * d_; ++i) free_N(i) = a(node_dofs_[i]);
+    for (Index i = 0; i < n_c_ * d_; ++i) free_N_(i) = a(node_dofs_[i]);
   }
-  Matrix p_free = positions_of(u_hat);
+  positions_of(u_hat_, p_free_);
   for (Index k = 0; k < n_c_; ++k)
-    for (int j = 0; j < d_; ++j) p_free(k, j) += bdt2 * free_N(k * d_ + j);
+    for (int j = 0; j < d_; ++j) p_free_(k, j) += bdt2 * free_N_(k * d_ + j);
   // The frame starts where the nodes are now.
-  Matrix p = positions_of(u_);
+  positions_of(u_, p_);
   StepReport report;
-  report.active_set_iterations =
-      solve_frame(p_free, [this](Index node) { return Matrix(Z_.middleCols(node * d_, d_)); }, bdt2,
-                  t1, p);
+  report.active_set_iterations = solve_frame(p_free_, &Z_, bdt2, t1, p_);
   // a = S^-1 (r - E_N N lambda).
-  Vector force(n_c_ * d_);
+  force_.resize(n_c_ * d_);
   for (Index k = 0; k < n_c_; ++k)
-    for (int j = 0; j < d_; ++j) force(k * d_ + j) = lambda_(k) * normals_(k, j);
+    for (int j = 0; j < d_; ++j) force_(k * d_ + j) = lambda_(k) * normals_(k, j);
+  const bool pressed = (lambda_.array() != 0.0).any();
   if (keep_columns_) {
-    if ((lambda_.array() != 0.0).any()) a.noalias() -= Y_ * force;
+    if (pressed) a.noalias() -= Y_ * force_;
     S_->backward_in_place(a);
-  } else if ((lambda_.array() != 0.0).any()) {
-    Vector correction = Vector::Zero(problem_.size());
-    for (Index i = 0; i < n_c_ * d_; ++i) correction(node_dofs_[i]) = -force(i);
-    S_->solve_in_place(correction);
-    a += correction;
+  } else if (pressed) {
+    correction_.setZero(problem_.size());
+    for (Index i = 0; i < n_c_ * d_; ++i) correction_(node_dofs_[i]) = -force_(i);
+    S_->solve_in_place(correction_);
+    a += correction_;
   }
-  u_ = u_hat + bdt2 * a;
-  v_ = v_pred + (options_.gamma * dt) * a;
-  a_ = std::move(a);
+  u_ = u_hat_ + bdt2 * a;
+  v_ = v_pred_ + (options_.gamma * dt) * a;
+  a_.swap(a);  // accel_: a workspace again
   // Closed contacts onto the surface: one Newton step along the gradient
   // removes the solves' round-off (the frame iteration's own error is
   // already of second order in its last update).
@@ -373,45 +379,49 @@ StepReport FollowingFrameStepper::advance(const ContactLoad& next) {
   return report;
 }
 
-Matrix FollowingFrameStepper::static_columns(Index node) const {
-  Matrix e = Matrix::Zero(n_c_ * d_, d_);
-  for (int j = 0; j < d_; ++j) e(node * d_ + j, j) = 1;
-  return K_NN_.solve(e);
+void FollowingFrameStepper::prepare_closed_relation() {
+  closed_.clear();
+  for (Index k = 0; k < n_c_; ++k)
+    if (active_[k]) closed_.push_back(k);
+  const Index m = static_cast<Index>(closed_.size());
+  if (m == 0) return;
+  // K_NN^-1 N_A: one solve with a column per closed node (its normal).
+  N_A_.setZero(n_c_ * d_, m);
+  for (Index c = 0; c < m; ++c)
+    N_A_.col(c).segment(closed_[c] * d_, d_) = normals_.row(closed_[c]).transpose();
+  KN_ = K_NN_.solve(N_A_);
+  G_.compute(N_A_.transpose() * KN_);
 }
 
-void FollowingFrameStepper::boundary_relation(Vector& x, const Vector& h) const {
+void FollowingFrameStepper::boundary_relation(Vector& x, const Vector& h) {
   // Free part: K_NN x_N = -(K_NO x_O) = K_NN x_N - (K x)_N, from the contact
   // rows of K alone (K_N: a few rows, not a product with the whole K).
-  Vector x_N(n_c_ * d_);
-  for (Index i = 0; i < n_c_ * d_; ++i) x_N(i) = x(node_dofs_[i]);
-  x_N = K_NN_.solve(Vector(K_NN_matrix_ * x_N - K_N_ * x));
+  x_N_.resize(n_c_ * d_);
+  for (Index i = 0; i < n_c_ * d_; ++i) x_N_(i) = x(node_dofs_[i]);
+  r_N_.noalias() = K_NN_matrix_ * x_N_;
+  r_N_.noalias() -= K_N_ * x;
+  x_N_ = K_NN_.solve(r_N_);
   // Closed contacts: n_k . x_k = h_k, by a multiplier per closed node.
-  std::vector<Index> closed;
-  for (Index k = 0; k < n_c_; ++k)
-    if (active_[k]) closed.push_back(k);
-  if (!closed.empty()) {
-    const Index m = static_cast<Index>(closed.size());
-    Matrix KN(n_c_ * d_, m);  // K_NN^-1 N_A
-    for (Index c = 0; c < m; ++c)
-      KN.col(c) = static_columns(closed[c]) * normals_.row(closed[c]).transpose();
-    Matrix G(m, m);
-    Vector b(m);
-    for (Index a = 0; a < m; ++a) {
-      const auto n_a = normals_.row(closed[a]);
-      b(a) = n_a.dot(x_N.segment(closed[a] * d_, d_)) - h(closed[a]);
-      for (Index c = 0; c < m; ++c) G(a, c) = n_a.dot(KN.col(c).segment(closed[a] * d_, d_));
-    }
-    x_N -= KN * G.ldlt().solve(b);
+  const Index m = static_cast<Index>(closed_.size());
+  if (m > 0) {
+    b_.resize(m);
+    for (Index a = 0; a < m; ++a)
+      b_(a) = normals_.row(closed_[a]).dot(x_N_.segment(closed_[a] * d_, d_)) - h(closed_[a]);
+    x_N_.noalias() -= KN_ * G_.solve(b_);
   }
-  for (Index i = 0; i < n_c_ * d_; ++i) x(node_dofs_[i]) = x_N(i);
+  for (Index i = 0; i < n_c_ * d_; ++i) x(node_dofs_[i]) = x_N_(i);
 }
 
 void FollowingFrameStepper::boundary_rates(double t) {
   // d/dt phi(p(t), t) = 0 on a closed contact: n . v = phi_t / |grad phi|;
   // twice: n . a = (phi_tt + 2 grad phi_t . v + v' H v) / |grad phi|, the
   // second derivatives by central differences of the obstacle (H v along v).
-  Vector h_v = Vector::Zero(n_c_), h_a = Vector::Zero(n_c_);
-  const Matrix p = positions_of(u_);
+  Vector& h_v = h_v_;
+  Vector& h_a = h_a_;
+  h_v.setZero(n_c_);
+  h_a.setZero(n_c_);
+  Matrix& p = p_now_;
+  positions_of(u_, p);
   const double step = 1e-6 * size_;
   for (Index k = 0; k < n_c_; ++k) {
     if (!active_[k]) continue;
@@ -421,6 +431,7 @@ void FollowingFrameStepper::boundary_rates(double t) {
     for (int j = 0; j < d_; ++j) normals_(k, j) = -o.grad(j) / g;
     h_v(k) = o.phi_t / g;
   }
+  prepare_closed_relation();  // the normals at u_, for v and a alike
   boundary_relation(v_, h_v);
   for (Index k = 0; k < n_c_; ++k) {
     if (!active_[k]) continue;
@@ -461,7 +472,8 @@ int FollowingFrameStepper::count_crossings(double t) const {
 }
 
 Vector FollowingFrameStepper::gaps() const {
-  const Matrix p = positions_of(u_);
+  Matrix p;
+  positions_of(u_, p);
   Vector phi(n_c_);
   for (Index k = 0; k < n_c_; ++k) {
     const Eigen::Vector3d x = point(p, k);
@@ -471,7 +483,8 @@ Vector FollowingFrameStepper::gaps() const {
 }
 
 Matrix FollowingFrameStepper::normals() const {
-  const Matrix p = positions_of(u_);
+  Matrix p;
+  positions_of(u_, p);
   Matrix n(n_c_, d_);
   for (Index k = 0; k < n_c_; ++k) {
     const Eigen::Vector3d x = point(p, k);

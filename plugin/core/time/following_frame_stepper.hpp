@@ -25,7 +25,6 @@
 #pragma once
 
 #include <Eigen/SparseCholesky>
-#include <functional>
 #include <memory>
 #include <vector>
 
@@ -93,19 +92,14 @@ class FollowingFrameStepper final : public Stepper {
   bool exact_impenetrability() const override { return false; }
 
  private:
-  /// Positions of the contact nodes (n_c x d, row k = x_k + u_k) for u.
-  Matrix positions_of(const Vector& u) const;
-  /// The d columns of a compliance (Z, or K_NN^-1 at the start) for the
-  /// components of one contact node.
-  using NodeColumns = std::function<Matrix(Index node)>;
+  /// Positions of the contact nodes (n_c x d, row k = x_k + u_k) for u, into p.
+  void positions_of(const Vector& u, Matrix& p) const;
   /// The fixed point of the header for free positions p_free and the
-  /// compliance `scale` * compliance at time t, from the linearisation point
-  /// p (updated in place to the converged positions); lambda_ and normals_
-  /// set. Returns the number of iterations.
-  int solve_frame(const Matrix& p_free, const NodeColumns& compliance, double scale, double t,
-                  Matrix& p);
-  /// K_NN^-1 E_node: the static compliance of one node's components.
-  Matrix static_columns(Index node) const;
+  /// compliance `scale` * Z at time t (Z null: the static compliance
+  /// K_NN^-1 of the start), from the linearisation point p (updated in place
+  /// to the converged positions); lambda_ and normals_ set. Returns the
+  /// number of iterations.
+  int solve_frame(const Matrix& p_free, const Matrix* Z, double scale, double t, Matrix& p);
   /// u <- u + (p - positions_of(u)) on the contact nodes.
   void place_nodes(const Matrix& p, Vector& u) const;
   /// Nodes outside the contact set inside the obstacle at time t (above).
@@ -120,9 +114,13 @@ class FollowingFrameStepper final : public Stepper {
   /// (K u + b_K K v)_N = F_N - N lambda are a first-order equation in u_N,
   /// which Newmark's update integrates, and its v_N is the physical one.
   void boundary_rates(double t);
+  /// KN_ = K_NN^-1 N_A and the factor of G = N_A' K_NN^-1 N_A for the
+  /// closed contacts A (active_) and their normals_: one solve with |A|
+  /// columns, shared by the relations of v and a.
+  void prepare_closed_relation();
   /// x_N <- K_NN^-1 (-(K x)_O-part) constrained by n_k . x_k = h_k on the
-  /// closed contacts (N: their normals).
-  void boundary_relation(Vector& x, const Vector& h) const;
+  /// closed contacts (after prepare_closed_relation).
+  void boundary_relation(Vector& x, const Vector& h);
 
   std::shared_ptr<const RigidObstacle> obstacle_;
   FollowingFrameOptions options_;
@@ -144,6 +142,22 @@ class FollowingFrameStepper final : public Stepper {
   Vector lambda_;
   Matrix normals_;                // n_c x d, those lambda_ acts along
   std::vector<bool> open_guess_;  // the LCP's warm start: lambda = 0
+  // Workspaces (sized by the first step, so that a step reuses them).
+  // solve_frame: gaps q_, the shift of the nodes, the candidates and their
+  // columns Z N_C, LCP matrix and data.
+  Vector q_, shift_, q_C_, e_N_;
+  std::vector<char> candidate_;
+  std::vector<Index> C_nodes_;
+  std::vector<bool> guess_;
+  Matrix ZN_, A_;
+  // advance: predictors, free accelerations of the nodes, positions, force.
+  Vector u_hat_, v_pred_, accel_, free_N_, force_, correction_;
+  Matrix p_free_, p_, p_now_;
+  // The relation of the closed contacts (prepare_closed_relation).
+  std::vector<Index> closed_;
+  Matrix N_A_, KN_;
+  Eigen::LDLT<Matrix> G_;
+  Vector x_N_, r_N_, b_, h_v_, h_a_;
 };
 
 }  // namespace nbm

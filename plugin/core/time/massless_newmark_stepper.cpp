@@ -60,7 +60,7 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
       contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()),
       energy_stable_(iteration_.beta() == 0.25 && iteration_.gamma() == 0.5 &&
                      damping.b_K == 0),
-      bounded_(energy_stable_ && energy == EnergyControl::kBounded) {
+      budget_(energy) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
   // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
   // M_OO^-1 r_O and leave the contact rows at r_C.
@@ -82,32 +82,24 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
 }
 
 void MasslessNewmarkStepper::start(const ContactLoad& load) {
-  returnable_loss_ = 0;
-  balanced_steps_ = 0;
+  budget_.reset();
   NbmStepper::start(load);
 }
 
 Vector MasslessNewmarkStepper::scheme_state() const {
-  return energy_stable_ ? Vector::Constant(1, returnable_loss_) : Vector();
+  return energy_stable_ ? budget_.state() : Vector();
 }
 
 void MasslessNewmarkStepper::carry_over(const Stepper& previous) {
   const auto* massless = dynamic_cast<const MasslessNewmarkStepper*>(&previous);
-  if (energy_stable_ && massless) returnable_loss_ = massless->returnable_loss_;
+  if (energy_stable_ && massless) budget_.take_over(massless->budget_);
 }
 
 void MasslessNewmarkStepper::restore_scheme_state(const Vector& state) {
-  // A state saved without it (another scheme, an older file): nothing kept.
-  if (state.size() == 0 || !energy_stable_) {
+  if (energy_stable_)
+    budget_.restore(state, "the energy-stable step");
+  else
     Stepper::restore_scheme_state(state);
-    returnable_loss_ = 0;
-    return;
-  }
-  if (state.size() != 1)
-    throw InputError("scheme state: size " + std::to_string(state.size()) +
-                     ", expected 1 (the energy-stable step's returnable loss)");
-  if (!std::isfinite(state(0))) throw InputError("scheme state: non-finite entries");
-  returnable_loss_ = state(0);
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {
@@ -256,32 +248,6 @@ double MasslessNewmarkStepper::blend(double theta, const ContactLoad& next) {
   return b;
 }
 
-double MasslessNewmarkStepper::balancing_fraction(const ContactLoad& next, double gain_trap,
-                                                  double tolerance) {
-  // Regula falsi (Illinois) on f(theta) = balance(theta) - E_n (E_n: the
-  // start's energy plus what may be returned), with
-  // f(0) <= 0 < f(1) = gain_trap: the largest theta found with f <= 0, once
-  // f >= -tolerance there (energy conserved to round-off).
-  prepare_blend(next.F);
-  double lo = 0, hi = 1, f_lo = blend(0, next) - energy_start_;
-  double w_lo = f_lo, w_hi = gain_trap;  // the secant's values, halved on a repeated side
-  int side = 0;
-  for (int it = 0; it < 60 && f_lo < -tolerance && hi - lo > 1e-15; ++it) {
-    const double theta = (lo * w_hi - hi * w_lo) / (w_hi - w_lo);
-    const double f = blend(theta, next) - energy_start_;
-    if (f <= 0) {
-      lo = theta, f_lo = w_lo = f;
-      if (side == -1) w_hi /= 2;
-      side = -1;
-    } else {
-      hi = theta, w_hi = f;
-      if (side == 1) w_lo /= 2;
-      side = 1;
-    }
-  }
-  return lo;
-}
-
 StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
   const double bdt2 = iteration_.beta_dt2();
@@ -339,14 +305,14 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
       (0.5 * std::abs(v_start_.dot(Mv_)) + 0.5 * std::abs(u_start_.dot(Ku_)) +
        std::abs(F_.dot(u_start_)));
   // Measured from what the step may reach: the start plus what it may return.
-  energy_start_ += returnable_loss_;
+  energy_start_ += budget_.returnable();
   const double gain_trap = balance(u_, v_, work_trap_, next.F) - energy_start_;
   if (gain_trap <= tolerance) {
-    keep_returnable(-gain_trap);
+    budget_.keep(-gain_trap);
     add_obstacle_work(work_trap_);
     return report;
   }
-  ++balanced_steps_;
+  budget_.count_balanced();
 
   // It would gain more than allowed (5.1): the step (5.2), whose force mu / 2
   // is complementary to the end gap (the LCP's z = mu for the contact rows
@@ -364,7 +330,12 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   u_mid_ = u_hat_ + bdt2 * a;
   iteration_.correct_velocity(v_pred_, a, v_mid_);
   a_mid_ = a;
-  const double theta = balancing_fraction(next, gain_trap, tolerance);
+  // The largest fraction of the way found whose balance is not above the
+  // allowed one (f(0) <= 0 < f(1) = gain_trap), once it is within round-off
+  // of it (energy conserved to round-off).
+  prepare_blend(next.F);
+  const auto excess = [&](double theta) { return blend(theta, next) - energy_start_; };
+  const double theta = largest_allowed_fraction(excess, excess(0), gain_trap, tolerance);
   u_ = u_mid_ + theta * (u_trap_ - u_mid_);
   v_ = v_mid_ + theta * (v_trap_ - v_mid_);
   a_ = a_mid_ + theta * (a_trap_ - a_mid_);
@@ -373,14 +344,8 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
   return_to_relation(next.F, g);
   // What the step reached, evaluated as the start was (not from
   // blend()'s expansion), so that round-off does not accumulate over steps.
-  keep_returnable(energy_start_ - balance(u_, v_, work, next.F));
+  budget_.keep(energy_start_ - balance(u_, v_, work, next.F));
   return report;
-}
-
-void MasslessNewmarkStepper::keep_returnable(double unreached) {
-  // A rise by round-off (unreached < 0) is kept with either control, so that
-  // the next steps take it back instead of adding it up.
-  returnable_loss_ = bounded_ ? unreached : std::min(0.0, unreached);
 }
 
 }  // namespace nbm

@@ -70,19 +70,11 @@
 
 #include "linalg/lcp.hpp"
 #include "linalg/mass_solve.hpp"
+#include "time/energy_budget.hpp"
 #include "time/nbm_stepper.hpp"
 #include "time/newmark_iteration.hpp"
 
 namespace nbm {
-
-/// What the energy-stable step bounds (method.md §5.1, "What is bounded").
-enum class EnergyControl {
-  /// E_n + D_n - W_n never above its start: a step may return what earlier
-  /// switching steps of the trapezoidal rule lost (touchdowns), no more.
-  kBounded,
-  /// E_{n+1} + D_{n+1} - W_{n+1} <= E_n + D_n - W_n in every step.
-  kMonotone,
-};
 
 /// Whether Y = L^-1 P E_C is kept (header): by its size next to L's, or
 /// forced (both paths give the same steps to round-off; tests compare them).
@@ -111,11 +103,11 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// (EnergyControl::kBounded): E_n + D_n - W_n plus it never rises
   /// (method.md §5.1). Negative by round-off where a step rose by round-off
   /// (either control): the next switching steps take that back.
-  double returnable_loss() const { return returnable_loss_; }
+  double returnable_loss() const { return budget_.returnable(); }
   /// Steps since the start that were taken between the two candidates
   /// (header): those on which the trapezoidal step would have gained more
   /// than allowed.
-  long balanced_steps() const { return balanced_steps_; }
+  long balanced_steps() const { return budget_.balanced_steps(); }
   /// [returnable_loss()] with the energy-stable step, else empty.
   Vector scheme_state() const override;
   /// The returnable loss of a previous massless stepper (a global budget: it
@@ -159,12 +151,6 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// u_, v_ at theta of the way from the step (5.2) to the trapezoidal one,
   /// returned to the relation; their balance (after prepare_blend).
   double blend(double theta, const ContactLoad& next);
-  /// The fraction of the way whose balance is the start's, given the
-  /// trapezoidal step's gain (> tolerance); leaves u_, v_ at some blend.
-  double balancing_fraction(const ContactLoad& next, double gain_trap, double tolerance);
-  /// returnable_loss_ after a switching step that ended `unreached` below
-  /// what it could reach (negative: above it, by round-off).
-  void keep_returnable(double unreached);
 
   NewmarkIteration iteration_;
   const CholeskyInverse& S_;              // the iteration matrix
@@ -173,9 +159,7 @@ class MasslessNewmarkStepper final : public NbmStepper {
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   double contact_row_scale_;              // s of the header (1 without b_K)
   bool energy_stable_;                    // the step of the header's "Energy"
-  bool bounded_;                          // EnergyControl::kBounded with it
-  double returnable_loss_ = 0;            // returnable_loss()
-  long balanced_steps_ = 0;               // balanced_steps()
+  EnergyBudget budget_;                   // what it bounds
   SparseMatrix interior_mass_;            // M + E_C E_C' (M_CC = 0, M_CO = 0)
   std::unique_ptr<MassSolver> mass_solver_;  // of interior_mass_
   // Workspaces of a step (sized by the first one).
