@@ -9,6 +9,9 @@
 #   bash bench/energy-cost.sh            # about two minutes
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+# Written outside the repository first, so that the page being made does not
+# count as an uncommitted change of bench/ in its own provenance line.
+tmp=$(mktemp)
 out="$repo/bench/RESULTS-energy.md"
 # shellcheck source=bench/provenance.sh
 source "$repo/bench/provenance.sh"
@@ -27,6 +30,7 @@ export OPENBLAS_NUM_THREADS=1
   echo
   tool_blocks "$tool" "50 25 0.49 1e-3 100 100" "100 50 0.49 1e-3 100 100" "200 100 0.49 1e-3 50 50" \
               "100 50 0.3 2e-3 100 100" "400 40 0.499 5e-3 50 50"
-} > "$out.tmp"
-mv "$out.tmp" "$out"
+} > "$tmp"
+chmod 644 "$tmp"
+mv "$tmp" "$out"
 cat "$out"

@@ -8,6 +8,9 @@
 #   bash bench/frame-cost.sh            # about a minute
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
+# Written outside the repository first, so that the page being made does not
+# count as an uncommitted change of bench/ in its own provenance line.
+tmp=$(mktemp)
 out="$repo/bench/RESULTS-frame.md"
 # shellcheck source=bench/provenance.sh
 source "$repo/bench/provenance.sh"
@@ -24,6 +27,7 @@ export OPENBLAS_NUM_THREADS=1
   echo "1.5 steps with a fixed frame for n_c <= 500, setup within 1.3 of today's (the fixed frame's)."
   echo
   tool_blocks "$tool" "100 10 100" "200 20 60" "400 40 40" "500 25 40"
-} > "$out.tmp"
-mv "$out.tmp" "$out"
+} > "$tmp"
+chmod 644 "$tmp"
+mv "$tmp" "$out"
 cat "$out"
