@@ -101,14 +101,7 @@ void Stepper::begin(const Vector& u, const Vector& v, const ContactLoad& load, d
   check_load(load, true);
   if (!std::isfinite(t)) throw InputError("t: non-finite initial time");
   if (check) check_penetration(u, load.obstacle.g, "initial");
-  u_ = u;
-  v_ = v;
-  F_ = load.F;
-  obstacle_ = load.obstacle;
-  t_ = t;
-  obstacle_work_ = 0;
-  load_work_ = 0;
-  dissipated_ = 0;
+  set_state(u, v, load, t);
   a_.resize(n);
   fresh_start_ = check;
   start(load);
@@ -135,17 +128,21 @@ void Stepper::restore(const Vector& u, const Vector& v, const Vector& a, const A
   if (!std::isfinite(t)) throw InputError("t: non-finite time");
   if (exact_impenetrability()) check_penetration(u, load.obstacle.g, "restored");
   restore_scheme_state(scheme_state);
-  u_ = u;
-  v_ = v;
+  set_state(u, v, load, t);
   a_ = a;
   active_ = active;
+  initialized_ = true;
+}
+
+void Stepper::set_state(const Vector& u, const Vector& v, const ContactLoad& load, double t) {
+  u_ = u;
+  v_ = v;
   F_ = load.F;
   obstacle_ = load.obstacle;
   t_ = t;
   obstacle_work_ = 0;
   load_work_ = 0;
   dissipated_ = 0;
-  initialized_ = true;
 }
 
 void Stepper::restore_scheme_state(const Vector& state) {

@@ -194,6 +194,9 @@ class Stepper {
 
  private:
   void begin(const Vector& u, const Vector& v, const ContactLoad& load, double t, bool check);
+  /// u, v, the load and obstacle at time t, the energy counters from zero:
+  /// what a new start and a restore share.
+  void set_state(const Vector& u, const Vector& v, const ContactLoad& load, double t);
   /// Sizes and finite entries of `load`; with `whole` false, the load's
   /// entries are not scanned (the obstacle's are).
   void check_load(const ContactLoad& load, bool whole) const;
