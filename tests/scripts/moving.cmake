@@ -119,7 +119,7 @@ nbm_bad_obstacle_case(loadrates-size [=[nbmLoadRates: load rate: size 21, expect
 nbm_bad_obstacle_case(loadrates-nan [=[nbmLoadRates: load acceleration: non-finite entries]=])
 nbm_bad_obstacle_case(loadrates-unconstructed [=[nbmLoadRates: the NBM object was not constructed]=])
 nbm_bad_obstacle_case(schemestate-before-init [=[nbmSchemeState: call nbmInit first]=])
-nbm_bad_obstacle_case(restart8-newmark-state [=[nbmRestart: scheme state: size 1, expected 0 \(this scheme keeps no state of its own\)]=])
+nbm_bad_obstacle_case(restart8-newmark-state [=[nbmRestart: scheme state: size 11, expected 1 \(the energy-stable step's returnable loss\)]=])
 nbm_bad_obstacle_case(restart8-massless-state-size [=[nbmRestart: scheme state: size 3, expected 1 \(the energy-stable step's returnable loss\)]=])
 nbm_bad_obstacle_case(restart8-mj-state-size [=[nbmRestart: scheme state: size 11, expected 1 \(Moreau-Jean's last impulse, one per contact node\)]=])
 nbm_bad_obstacle_case(restart8-mj-state-nan [=[nbmRestart: scheme state: non-finite entries]=])

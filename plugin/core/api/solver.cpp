@@ -56,14 +56,19 @@ void check_options(const SolverOptions& options) {
                      "contact frame follows the body only with massless contact nodes)");
   if (options.energy) {
     const std::string& energy = *options.energy;
-    if (energy != "bounded" && energy != "monotone")
-      throw InputError("energy: \"" + energy + "\", expected \"bounded\" or \"monotone\"");
-    if (options.mass != "redistributed" || options.obstacle ||
-        options.beta.value_or(0.25) != 0.25 || options.gamma.value_or(0.5) != 0.5 ||
-        options.rayleigh_stiffness != 0)
+    if (energy != "bounded" && energy != "monotone" && energy != "none")
+      throw InputError("energy: \"" + energy +
+                       "\", expected \"bounded\", \"monotone\" or \"none\"");
+    const bool damped = options.rayleigh_mass != 0 || options.rayleigh_stiffness != 0 ||
+                        options.damping.rows != 0;
+    if (energy != "none" &&
+        (scheme != "newmark" || options.obstacle || options.beta.value_or(0.25) != 0.25 ||
+         options.gamma.value_or(0.5) != 0.5 || options.rayleigh_stiffness != 0 ||
+         (options.mass == "consistent" && damped)))
       throw InputError("energy: given without the energy-stable step it controls, which needs "
-                       "mass = \"redistributed\", scheme \"newmark\" with beta = 1/4 and "
-                       "gamma = 1/2, no rayleighK and no obstacle (method.md §5.1)");
+                       "scheme \"newmark\" with beta = 1/4 and gamma = 1/2, no rayleighK and "
+                       "no obstacle, and with mass = \"consistent\" no damping at all "
+                       "(method.md §5.1, §5.3)");
   }
   if (options.mass == "redistributed") {
     if (scheme != "newmark")
@@ -130,6 +135,15 @@ Matrix positions_of(const SolverOptions& options, Index n) {
       options.positions.data(), n, n_pos / n);
 }
 
+// What the energy-stable step bounds (option energy, checked): "bounded" by
+// default where the step exists (method.md §5.1, §5.3).
+EnergyControl energy_control(const SolverOptions& options) {
+  const std::string energy = options.energy.value_or("bounded");
+  return energy == "monotone" ? EnergyControl::kMonotone
+         : energy == "none"   ? EnergyControl::kNone
+                              : EnergyControl::kBounded;
+}
+
 // The time scheme of the options on a problem (options checked), with the
 // damping in the problem's internal coordinates.
 std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const ContactProblem& problem,
@@ -139,14 +153,13 @@ std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const Contac
   const double beta = options.beta.value_or(defaults.beta);
   const double gamma = options.gamma.value_or(defaults.gamma);
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(
-        problem, options.dt, beta, gamma, damping, ContactColumns::kAuto,
-        options.energy.value_or("bounded") == "monotone" ? EnergyControl::kMonotone
-                                                         : EnergyControl::kBounded);
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma, damping,
+                                                    ContactColumns::kAuto, energy_control(options));
   if (options.scheme == "newmark") {
     NewmarkParameters parameters;
     parameters.beta = beta;
     parameters.gamma = gamma;
+    parameters.energy = energy_control(options);
     return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, damping);
   }
   if (options.scheme == "explicit") {

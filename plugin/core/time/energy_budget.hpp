@@ -19,6 +19,8 @@ enum class EnergyControl {
   kBounded,
   /// E_{n+1} + D_{n+1} - W_{n+1} <= E_n + D_n - W_n in every step.
   kMonotone,
+  /// Nothing bounded: the scheme's own step (the trapezoidal contact forces).
+  kNone,
 };
 
 /// The returnable loss R of method.md §5.1: B + R never rises in a step (B

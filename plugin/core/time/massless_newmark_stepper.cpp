@@ -58,8 +58,8 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
       contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()),
-      energy_stable_(iteration_.beta() == 0.25 && iteration_.gamma() == 0.5 &&
-                     damping.b_K == 0),
+      energy_stable_(energy != EnergyControl::kNone && iteration_.beta() == 0.25 &&
+                     iteration_.gamma() == 0.5 && damping.b_K == 0),
       budget_(energy) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
   // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
@@ -170,27 +170,6 @@ void MasslessNewmarkStepper::return_to_relation(const Vector& F, const Vector& g
   a_ -= correction_;
 }
 
-double MasslessNewmarkStepper::energy(const Vector& u, const Vector& v, const Vector& F) {
-  Ku_.noalias() = problem_.K() * u;
-  Mv_.noalias() = problem_.M() * v;
-  return 0.5 * v.dot(Mv_) + 0.5 * u.dot(Ku_) - F.dot(u);
-}
-
-double MasslessNewmarkStepper::balance(const Vector& u, const Vector& v, double work,
-                                       const Vector& F) {
-  double b = energy(u, v, F) - work;
-  // A load that changes over the step changes the potential -F.u by itself:
-  // the trapezoidal rule's work of the load is (F_n + F_{n+1}) / 2 . du, so
-  // its balance carries + (F_{n+1} - F_n) . (u_n + u_{n+1}) / 2.
-  if (F != F_) b += 0.5 * (F - F_).dot(u_start_ + u);
-  if (damped()) {
-    v_mean_ = 0.5 * (v_start_ + v);
-    Mv_.noalias() = C_ * v_mean_;
-    b += dt_ * v_mean_.dot(Mv_);
-  }
-  return b;
-}
-
 void MasslessNewmarkStepper::prepare_blend(const Vector& F) {
   // Along the way from (5.2) (mid_) to the trapezoidal step (trap_),
   // u_lin = u_mid + theta du and v = v_mid + theta dv are affine in theta,
@@ -298,12 +277,8 @@ StepReport MasslessNewmarkStepper::advance_interior(const ContactLoad& next) {
     add_obstacle_work(work_trap_);
     return report;
   }
-  energy_start_ = energy(u_start_, v_start_, F_);
-  // Round-off of the energies: of the size of their largest term.
-  const double tolerance =
-      64 * std::numeric_limits<double>::epsilon() *
-      (0.5 * std::abs(v_start_.dot(Mv_)) + 0.5 * std::abs(u_start_.dot(Ku_)) +
-       std::abs(F_.dot(u_start_)));
+  double tolerance;  // the round-off of the energies
+  energy_start_ = start_energy(&tolerance);
   // Measured from what the step may reach: the start plus what it may return.
   energy_start_ += budget_.returnable();
   const double gain_trap = balance(u_, v_, work_trap_, next.F) - energy_start_;

@@ -139,12 +139,6 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// nodal boundary relation at u_O (load F, gaps g), a_O consistent with
   /// it; the new active set.
   void return_to_relation(const Vector& F, const Vector& g);
-  /// E = v'Mv/2 + u'Ku/2 - F.u (leaves K u in Ku_, M v in Mv_).
-  double energy(const Vector& u, const Vector& v, const Vector& F);
-  /// E + the step's dissipation - the work of the obstacle and of the load's
-  /// change over the step, for the end state (u, v) of the current step
-  /// (from u_start_, v_start_, under F_ to F).
-  double balance(const Vector& u, const Vector& v, double work, const Vector& F);
   /// The parts of the balance along the way from (5.2) to the trapezoidal
   /// step that are quadratic in theta (blend_), for the end load F.
   void prepare_blend(const Vector& F);
@@ -166,7 +160,7 @@ class MasslessNewmarkStepper final : public NbmStepper {
   Vector u_hat_, v_pred_, acceleration_, correction_, q_, a_C_, h_accel_, Cv_;
   Vector lambda_start_, u_C_before_, stiffness_change_;
   // The energy-stable step's candidates: the trapezoidal step and (5.2).
-  Vector rhs_, Ku_, Mv_, u_start_, v_start_, v_mean_, u_trap_, v_trap_, a_trap_, u_mid_, v_mid_, a_mid_;
+  Vector rhs_, v_mean_, u_trap_, v_trap_, a_trap_, u_mid_, v_mid_, a_mid_;
   // The way between them (prepare_blend): du, dv, K u_mid, K du, M dv, the
   // mean load, and the quadratic's coefficients.
   Vector du_, dv_, Ku_mid_, Kdu_, Mdv_, load_mean_, reactions_;

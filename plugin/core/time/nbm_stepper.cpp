@@ -1,5 +1,8 @@
 #include "time/nbm_stepper.hpp"
 
+#include <cmath>
+#include <limits>
+
 namespace nbm {
 
 NbmStepper::NbmStepper(const ContactProblem& problem, double dt, const Damping& damping)
@@ -19,6 +22,34 @@ StepReport NbmStepper::advance(const ContactLoad& next) {
   acceleration_constraint(next, active_, h_);
   boundary_.project(a_, active_, h_);
   return report;
+}
+
+double NbmStepper::energy(const Vector& u, const Vector& v, const Vector& F) {
+  Ku_.noalias() = problem_.K() * u;
+  Mv_.noalias() = mass() * v;
+  return 0.5 * v.dot(Mv_) + 0.5 * u.dot(Ku_) - F.dot(u);
+}
+
+double NbmStepper::balance(const Vector& u, const Vector& v, double work, const Vector& F) {
+  double b = energy(u, v, F) - work;
+  // A load that changes over the step changes the potential -F.u by itself:
+  // the trapezoidal rule's work of the load is (F_n + F_{n+1}) / 2 . du, so
+  // its balance carries + (F_{n+1} - F_n) . (u_n + u_{n+1}) / 2.
+  if (F != F_) b += 0.5 * (F - F_).dot(u_start_ + u);
+  if (damped()) {
+    mean_velocity_ = 0.5 * (v_start_ + v);
+    Mv_.noalias() = C_ * mean_velocity_;
+    b += dt_ * mean_velocity_.dot(Mv_);
+  }
+  return b;
+}
+
+double NbmStepper::start_energy(double* roundoff) {
+  const double e = energy(u_start_, v_start_, F_);
+  *roundoff = 64 * std::numeric_limits<double>::epsilon() *
+              (0.5 * std::abs(v_start_.dot(Mv_)) + 0.5 * std::abs(u_start_.dot(Ku_)) +
+               std::abs(F_.dot(u_start_)));
+  return e;
 }
 
 void NbmStepper::constraint(const Vector& closed, const Vector* open, const ActiveSet& active,

@@ -42,14 +42,29 @@ class NbmStepper : public Stepper {
   void acceleration_constraint(const ContactLoad& load, const ActiveSet& active,
                                Vector& h) const;
 
+  // The energy-stable steps' balance (method.md §5.1, §5.3), shared by the
+  // mass treatments.
+  /// E = v'Mv/2 + u'Ku/2 - F.u (leaves K u in Ku_, M v in Mv_).
+  double energy(const Vector& u, const Vector& v, const Vector& F);
+  /// E + the step's dissipation - the work of the obstacle and of the load's
+  /// change over the step, for the end state (u, v) of the current step
+  /// (from u_start_, v_start_, under F_ to F).
+  double balance(const Vector& u, const Vector& v, double work, const Vector& F);
+  /// E at the step's start (u_start_, v_start_, F_), and the round-off of
+  /// the energies there (of the size of their largest term) in *roundoff.
+  double start_energy(double* roundoff);
+
   NodalBoundary boundary_;
+  Vector u_start_, v_start_;  // the step's start, kept by the energy-stable steps
+  Vector Ku_, Mv_;            // energy()'s products
 
  private:
   /// h_k = closed(k) on closed contacts, (*open)(c_k) (0 if null) on open ones.
   void constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
                   Vector& h) const;
 
-  Vector h_;  // workspace: the constraints of the rates
+  Vector h_;       // workspace: the constraints of the rates
+  Vector mean_velocity_;  // workspace of balance()
 };
 
 }  // namespace nbm

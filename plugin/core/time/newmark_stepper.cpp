@@ -12,7 +12,31 @@ NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
     : NbmStepper(problem, dt, damping),
       parameters_(parameters),
       iteration_(problem, dt, parameters.beta, parameters.gamma, C_),
-      solver_(iteration_.S(), problem.constraint_basis()) {}
+      solver_(iteration_.S(), problem.constraint_basis()),
+      energy_stable_(parameters.energy != EnergyControl::kNone && parameters.beta == 0.25 &&
+                     parameters.gamma == 0.5 && !damped()),
+      budget_(parameters.energy) {}
+
+void NewmarkStepper::start(const ContactLoad& load) {
+  budget_.reset();
+  NbmStepper::start(load);
+}
+
+Vector NewmarkStepper::scheme_state() const {
+  return energy_stable_ ? budget_.state() : Vector();
+}
+
+void NewmarkStepper::carry_over(const Stepper& previous) {
+  const auto* newmark = dynamic_cast<const NewmarkStepper*>(&previous);
+  if (energy_stable_ && newmark) budget_.take_over(newmark->budget_);
+}
+
+void NewmarkStepper::restore_scheme_state(const Vector& state) {
+  if (energy_stable_)
+    budget_.restore(state, "the energy-stable step");
+  else
+    Stepper::restore_scheme_state(state);
+}
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
@@ -55,6 +79,11 @@ NewmarkStepper::Candidate& NewmarkStepper::add_candidate() {
 
 StepReport NewmarkStepper::advance_interior(const ContactLoad& next) {
   const Vector& g = next.obstacle.g;
+  if (energy_stable_) {
+    u_start_ = u_;
+    v_start_ = v_;
+    start_set_ = active_;
+  }
   iteration_.predict(u_, v_, a_, u_pred_, v_pred_);
 
   // Fixed point on the active set at t_{n+1} (§5): solve with a guess, then
@@ -92,6 +121,7 @@ StepReport NewmarkStepper::advance_interior(const ContactLoad& next) {
   a_.swap(a_next_);  // a_next_, u_next_: workspaces again from here
   iteration_.correct_velocity(v_pred_, a_, v_);
   u_.swap(u_next_);
+  if (energy_stable_) limit_energy(next);
   return report;
 }
 

@@ -8,6 +8,8 @@
 #include <memory>
 
 #include "linalg/constrained_solver.hpp"
+#include "linalg/lcp.hpp"
+#include "time/energy_budget.hpp"
 #include "time/nbm_stepper.hpp"
 #include "time/newmark_iteration.hpp"
 
@@ -17,6 +19,9 @@ struct NewmarkParameters {
   double beta = 0.25;  ///< average acceleration by default: energy conserving
   double gamma = 0.5;
   int max_active_set_iterations = 25;
+  /// What the energy-stable step (method.md §5.3) bounds; kNone: the
+  /// paper's step alone. Taken with beta = 1/4, gamma = 1/2 and no damping.
+  EnergyControl energy = EnergyControl::kNone;
 };
 
 class NewmarkStepper final : public NbmStepper {
@@ -30,11 +35,21 @@ class NewmarkStepper final : public NbmStepper {
   using Stepper::step;
 
   const NewmarkParameters& parameters() const { return parameters_; }
+  /// Whether the step is the energy-stable one (method.md §5.3).
+  bool energy_stable() const { return energy_stable_; }
+  /// As MasslessNewmarkStepper's (energy_budget.hpp).
+  double returnable_loss() const { return budget_.returnable(); }
+  long balanced_steps() const { return budget_.balanced_steps(); }
+  /// [returnable_loss()] with the energy-stable step, else empty.
+  Vector scheme_state() const override;
+  void carry_over(const Stepper& previous) override;
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
   void solve_acceleration(const ContactLoad& load) override;
   StepReport advance_interior(const ContactLoad& next) override;
+  void start(const ContactLoad& load) override;
+  void restore_scheme_state(const Vector& state) override;
 
  private:
   /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
@@ -62,6 +77,19 @@ class NewmarkStepper final : public NbmStepper {
   /// Step of the fallback (§5), when no active set tried was consistent.
   void fall_back(const ContactLoad& next, StepReport& report);
 
+  // The energy-stable step (newmark_energy.cpp, method.md §5.3).
+  /// After the paper's step to u_, v_, a_, active_ from u_start_, v_start_:
+  /// keeps it if its balance is allowed, else takes the state between it
+  /// and the dissipative candidate whose balance is.
+  void limit_energy(const ContactLoad& next);
+  /// One backward-Euler step of dt/2 (matrix S) from (u, v) under the load F
+  /// against the gaps g, in place.
+  void backward_euler_half_step(Vector& u, Vector& v, const Vector& F, const Vector& g);
+  /// u_, v_ at theta of the way from the dissipative candidate to the paper's
+  /// step, u_C onto the relation, v M-projected onto its velocities; the
+  /// balance's excess over the allowed one.
+  double blend(double theta, const ContactLoad& next);
+
   NewmarkParameters parameters_;
   NewmarkIteration iteration_;
   ConstrainedSolver solver_;  // with the iteration matrix
@@ -72,6 +100,18 @@ class NewmarkStepper final : public NbmStepper {
   ActiveSet guess_, predictor_set_;
   std::vector<Candidate> tried_;
   std::size_t n_tried_ = 0;
+  // The energy-stable step: M with the relation's constraints (velocity
+  // projections, consistent accelerations), the LCP of a half step
+  // ((dt/2)^2 W_CC), the budget, the candidates and workspaces.
+  bool energy_stable_ = false;
+  EnergyBudget budget_;
+  std::unique_ptr<ConstrainedSolver> mass_;
+  std::unique_ptr<CachedLcpSolver> half_lcp_;
+  Vector u_paper_, v_paper_, u_dissipative_, v_dissipative_, load_mean_;
+  Vector rhs_, correction_, q_, h_rate_;
+  ActiveSet start_set_, blend_set_;
+  std::vector<bool> open_;
+  double allowed_ = 0;
 };
 
 }  // namespace nbm
