@@ -1,12 +1,14 @@
-// What the massless boundary's energy-stable step costs (method.md §5.1): a
-// P1 plate (bench/plate.hpp, cells of 0.02 x 0.02, Poisson ratio NU) dropped
-// 1e-3 onto flat ground along its bottom edge and left on it, steps of DT,
-// so that its contacts open and close in most steps. Prints, in one process:
+// What the energy-stable steps cost (method.md §5.1, §5.3): a P1 plate
+// (bench/plate.hpp, cells of 0.02 x 0.02, Poisson ratio NU) dropped 1e-3 onto
+// flat ground along its bottom edge and left on it, steps of DT, so that its
+// contacts open and close in most steps. Prints, in one process:
 //   - the plain contact-free Newmark step (plain_step.hpp) and its factorization;
-//   - the massless boundary with energy = "bounded" and "monotone": setup,
-//     mean step, the share of steps in which a contact switched and of those
-//     taken between the two candidates (balanced), and each step / plain step;
-//   - the same massless stepper in free flight (the ground far below): the
+//   - for the massless boundary and for the paper's NBM (contact nodes with
+//     mass), with energy = "bounded", "monotone" and "none": setup, mean
+//     step, the share of steps in which a contact switched, of those taken
+//     between two candidates (balanced) and of the paper's fallbacks, and
+//     each step / plain step;
+//   - the massless stepper in free flight (the ground far below): the
 //     massless step without contact forces.
 // CPU times of this thread, mean over STEPS steps after SETTLE steps of
 // settling; run with OPENBLAS_NUM_THREADS=1.
@@ -16,6 +18,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,6 +27,7 @@
 #include "plain_step.hpp"
 #include "plate.hpp"
 #include "time/massless_newmark_stepper.hpp"
+#include "time/newmark_stepper.hpp"
 
 namespace {
 
@@ -38,14 +42,24 @@ double cpu_seconds() {
 
 struct Measured {
   double setup = 0, step = 0;
-  double switching = 0, balanced = 0;  // shares of the timed steps
+  double switching = 0, balanced = 0, fallbacks = 0;  // shares of the timed steps
 };
 
-// The plate's bottom edge against a ground `gap` below it, energy control
-// `energy`: setup, then SETTLE steps, then STEPS timed ones.
-Measured massless(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
-                  const Eigen::MatrixXd& X, double gap, double dt, nbm::EnergyControl energy,
-                  int settle, int steps) {
+// The two mass treatments (method.md §4).
+enum class Mass { kMassless, kConsistent };
+
+long balanced_steps(const nbm::Stepper& s) {
+  if (const auto* massless = dynamic_cast<const nbm::MasslessNewmarkStepper*>(&s))
+    return massless->balanced_steps();
+  return dynamic_cast<const nbm::NewmarkStepper&>(s).balanced_steps();
+}
+
+// The plate's bottom edge against a ground `gap` below it, mass treatment
+// `mass`, energy control `energy`: setup, then SETTLE steps, then STEPS
+// timed ones.
+Measured at_rest(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
+                 const Eigen::MatrixXd& X, double gap, double dt, Mass mass,
+                 nbm::EnergyControl energy, int settle, int steps) {
   const Index n = a.K.rows();
   std::vector<Index> dofs;
   std::vector<double> normals, gaps;
@@ -58,24 +72,33 @@ Measured massless(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
   const double start = cpu_seconds();
   const nbm::ContactProblem problem(
       a.M, a.K, nbm::ContactSet(n, dofs, normals, Eigen::Map<const Vector>(gaps.data(), gaps.size())),
-      {}, &X);
-  nbm::MasslessNewmarkStepper s(problem, dt, 0.25, 0.5, nbm::Damping{},
-                                nbm::ContactColumns::kAuto, energy);
+      {}, mass == Mass::kMassless ? &X : nullptr);
+  std::unique_ptr<nbm::Stepper> s;
+  if (mass == Mass::kMassless) {
+    s = std::make_unique<nbm::MasslessNewmarkStepper>(problem, dt, 0.25, 0.5, nbm::Damping{},
+                                                      nbm::ContactColumns::kAuto, energy);
+  } else {
+    nbm::NewmarkParameters parameters;
+    parameters.energy = energy;
+    s = std::make_unique<nbm::NewmarkStepper>(problem, dt, parameters);
+  }
   m.setup = cpu_seconds() - start;
   const Vector F = problem.to_internal(a.F), zero = Vector::Zero(n);
-  s.initialize(zero, zero, F);
-  for (int k = 0; k < settle; ++k) s.step(F);
-  const long balanced_before = s.balanced_steps();
-  int switching = 0;
+  s->initialize(zero, zero, F);
+  for (int k = 0; k < settle; ++k) s->step(F);
+  const bool counts = energy != nbm::EnergyControl::kNone;
+  const long balanced_before = counts ? balanced_steps(*s) : 0;
+  int switching = 0, fallbacks = 0;
   const double t0 = cpu_seconds();
   for (int k = 0; k < steps; ++k) {
-    const nbm::ActiveSet before = s.active();
-    s.step(F);
-    switching += s.active() != before;
+    const nbm::ActiveSet before = s->active();
+    fallbacks += s->step(F).fallback;
+    switching += s->active() != before;
   }
   m.step = (cpu_seconds() - t0) / steps;
   m.switching = static_cast<double>(switching) / steps;
-  m.balanced = static_cast<double>(s.balanced_steps() - balanced_before) / steps;
+  m.balanced = counts ? static_cast<double>(balanced_steps(*s) - balanced_before) / steps : 0;
+  m.fallbacks = static_cast<double>(fallbacks) / steps;
   return m;
 }
 
@@ -111,20 +134,24 @@ int main(int argc, char** argv) {
   std::printf("dofs %ld, contact nodes %d, nu %g, dt %g: factorization %.4f s, plain step "
               "%.6f s\n",
               static_cast<long>(a.K.rows()), p.nodes_x(), p.nu, dt, factorization, plain_step);
-  const Measured free_flight =
-      massless(p, a, X, 1e6, dt, nbm::EnergyControl::kBounded, settle, steps);
-  std::printf("massless, free flight:     setup %.4f s (%.2f factorizations), step %.6f s "
+  const Measured free_flight = at_rest(p, a, X, 1e6, dt, Mass::kMassless,
+                                       nbm::EnergyControl::kBounded, settle, steps);
+  std::printf("massless, free flight:       setup %.4f s (%.2f factorizations), step %.6f s "
               "(%.2f plain)\n",
               free_flight.setup, free_flight.setup / factorization, free_flight.step,
               free_flight.step / plain_step);
-  for (const auto& [energy, name] : {std::pair{nbm::EnergyControl::kBounded, "bounded"},
-                                     {nbm::EnergyControl::kMonotone, "monotone"}}) {
-    const Measured m = massless(p, a, X, 1e-3, dt, energy, settle, steps);
-    std::printf("massless, at rest, %-9s setup %.4f s (%.2f factorizations), step %.6f s "
-                "(%.2f plain, %.2f free flight); switching %.0f%%, balanced %.0f%% of the steps\n",
-                (std::string(name) + ":").c_str(), m.setup, m.setup / factorization, m.step,
-                m.step / plain_step, m.step / free_flight.step, 100 * m.switching,
-                100 * m.balanced);
-  }
+  for (const auto& [mass, mass_name] :
+       {std::pair{Mass::kMassless, "massless"}, {Mass::kConsistent, "paper NBM"}})
+    for (const auto& [energy, name] : {std::pair{nbm::EnergyControl::kBounded, "bounded"},
+                                       {nbm::EnergyControl::kMonotone, "monotone"},
+                                       {nbm::EnergyControl::kNone, "none"}}) {
+      const Measured m = at_rest(p, a, X, 1e-3, dt, mass, energy, settle, steps);
+      std::printf("%s, at rest, %-9s setup %.4f s (%.2f factorizations), step %.6f s "
+                  "(%.2f plain); switching %.0f%%, balanced %.0f%%, fallbacks %.0f%% of the "
+                  "steps\n",
+                  mass_name, (std::string(name) + ":").c_str(), m.setup, m.setup / factorization,
+                  m.step, m.step / plain_step, 100 * m.switching, 100 * m.balanced,
+                  100 * m.fallbacks);
+    }
   return 0;
 }

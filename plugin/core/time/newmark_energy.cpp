@@ -3,6 +3,8 @@
 // dissipative candidate whose balance is.
 #include "time/newmark_stepper.hpp"
 
+#include <algorithm>
+
 namespace nbm {
 
 void NewmarkStepper::backward_euler_half_step(Vector& u, Vector& v, const Vector& F,
@@ -93,9 +95,29 @@ void NewmarkStepper::limit_energy(const ContactLoad& next) {
   v_dissipative_ = v_start_;
   backward_euler_half_step(u_dissipative_, v_dissipative_, load_mean_, g);
   backward_euler_half_step(u_dissipative_, v_dissipative_, load_mean_, g);
-  const auto excess = [&](double theta) { return blend(theta, next); };
-  const double theta = largest_allowed_fraction(excess, excess(0), gain, tolerance);
-  const double reached = blend(theta, next);  // the search's last state may be another
+  // The state of the largest allowed theta met is kept, not evaluated again.
+  double best = -1, best_excess = 0;
+  const auto excess = [&](double theta) {
+    const double e = blend(theta, next);
+    if (e <= 0 && theta > best) {
+      best = theta, best_excess = e;
+      u_best_ = u_, v_best_ = v_, best_set_ = blend_set_;
+    }
+    return e;
+  };
+  const double at_0 = excess(0);
+  // The search stops within a thousandth of the energy between the two ends
+  // of the way: what it leaves unreached is kept as returnable with
+  // "bounded", and is at most that with "monotone".
+  const double close_enough = std::max(tolerance, 1e-3 * (gain - at_0));
+  const double theta = largest_allowed_fraction(excess, at_0, gain, close_enough);
+  double reached;
+  if (theta == best) {
+    u_.swap(u_best_), v_.swap(v_best_), blend_set_.swap(best_set_);
+    reached = best_excess;
+  } else {  // theta = 0 above the bound by round-off
+    reached = blend(theta, next);
+  }
   active_ = blend_set_;
   rhs_ = next.F;
   rhs_.noalias() -= problem_.K() * u_;

@@ -107,9 +107,9 @@ class NewmarkStepper final : public NbmStepper {
   EnergyBudget budget_;
   std::unique_ptr<ConstrainedSolver> mass_;
   std::unique_ptr<CachedLcpSolver> half_lcp_;
-  Vector u_paper_, v_paper_, u_dissipative_, v_dissipative_, load_mean_;
+  Vector u_paper_, v_paper_, u_dissipative_, v_dissipative_, u_best_, v_best_, load_mean_;
   Vector rhs_, correction_, q_, h_rate_;
-  ActiveSet start_set_, blend_set_;
+  ActiveSet start_set_, blend_set_, best_set_;
   std::vector<bool> open_;
   double allowed_ = 0;
 };
