@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# The cost of the massless boundary's energy-stable step (method.md §5.1),
+# The cost of the energy-stable steps (method.md §5.1, §5.3),
 # measured by build/bench/nbm_energy_cost (bench/energy_cost.cpp) on plates of
 # growing size resting on the ground, with a nearly incompressible material
 # and steps longer than the element transit time, so that contacts switch in
-# most steps: energy = "bounded" and "monotone" against the plain
-# contact-free step and the massless step in free flight, all in one process
-# per size. Writes bench/RESULTS-energy.md.
-#   bash bench/energy-cost.sh            # about two minutes
+# most steps: both mass treatments with energy = "bounded", "monotone" and
+# "none" against the plain contact-free step and the massless step in free
+# flight, all in one process per size. Writes bench/RESULTS-energy.md.
+#   bash bench/energy-cost.sh            # about five minutes
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 # Written outside the repository first, so that the page being made does not
@@ -26,7 +26,9 @@ export OPENBLAS_NUM_THREADS=1
   echo "(bench/energy_cost.cpp): a P1 plate of NX x NY cells (side 0.02, E = 1e3, rho = 1) dropped"
   echo "1e-3 onto the ground and left on it (NX + 1 contact nodes); CPU times of the thread, mean"
   echo "over STEPS steps after SETTLE steps. \"balanced\": the steps taken between the trapezoidal"
-  echo "step and the step (5.2) of method.md, each costing a second LCP and solve."
+  echo "step and a dissipative one (massless: the step (5.2) of method.md, a second LCP and solve;"
+  echo "paper NBM: two backward-Euler half steps and the projections of §5.3); \"fallbacks\": the paper"
+  echo "NBM's steps with no consistent active set (§5.2)."
   echo
   tool_blocks "$tool" "50 25 0.49 1e-3 100 100" "100 50 0.49 1e-3 100 100" "200 100 0.49 1e-3 50 50" \
               "100 50 0.3 2e-3 100 100" "400 40 0.499 5e-3 50 50"
