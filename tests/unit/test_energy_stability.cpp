@@ -161,11 +161,12 @@ std::string name(EnergyControl energy, Mass mass = Mass::kMassless) {
          (mass == Mass::kMassless ? ", massless" : ", consistent");
 }
 
-// Nearly incompressible materials and steps of up to ~50 transit times of
-// the pressure wave through an element (nu = 0.499, dt = 5e-3), 1e4 steps.
+// Nearly incompressible materials and steps from below the transit time of
+// the pressure wave through an element to ~50 of them (nu = 0.499,
+// dt = 5e-3), 1e4 steps.
 void block_on_the_ground(EnergyControl energy, Mass mass) {
   for (double nu : {0.3, 0.45, 0.49, 0.499})
-    for (double dt : {2.5e-4, 1e-3, 5e-3}) {
+    for (double dt : {1e-4, 1e-3, 5e-3}) {
       SCOPED_TRACE(name(energy, mass) + ", nu " + std::to_string(nu) + ", dt " +
                    std::to_string(dt));
       Block b(10, nu, dt, energy, mass);
@@ -174,8 +175,9 @@ void block_on_the_ground(EnergyControl energy, Mass mass) {
       const Rest r = rest_on_fixed_ground(b.s, 10000, b.scale);
       expect_energy_bounds(r, energy);
       // The steps taken between the two candidates are exercised (the
-      // trapezoidal rule gained on such blocks: docs/energy.md).
-      if (nu >= 0.49) {
+      // trapezoidal rule gained on such blocks: docs/energy.md; at dt = 1e-4
+      // the switching of nu = 0.49 is resolved, and nothing needs balancing).
+      if (nu >= 0.49 && dt >= 1e-3) {
         EXPECT_GT(balanced_steps(stepper), 0);
       }
       std::cout << name(energy, mass) << ", nu " << nu << ", dt " << dt << ": worst step rise "
