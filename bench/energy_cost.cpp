@@ -48,12 +48,6 @@ struct Measured {
 // The two mass treatments (method.md §4).
 enum class Mass { kMassless, kConsistent };
 
-long balanced_steps(const nbm::Stepper& s) {
-  if (const auto* massless = dynamic_cast<const nbm::MasslessNewmarkStepper*>(&s))
-    return massless->balanced_steps();
-  return dynamic_cast<const nbm::NewmarkStepper&>(s).balanced_steps();
-}
-
 // The plate's bottom edge against a ground `gap` below it, mass treatment
 // `mass`, energy control `energy`: setup, then SETTLE steps, then STEPS
 // timed ones.
@@ -73,7 +67,7 @@ Measured at_rest(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
   const nbm::ContactProblem problem(
       a.M, a.K, nbm::ContactSet(n, dofs, normals, Eigen::Map<const Vector>(gaps.data(), gaps.size())),
       {}, mass == Mass::kMassless ? &X : nullptr);
-  std::unique_ptr<nbm::Stepper> s;
+  std::unique_ptr<nbm::NbmStepper> s;
   if (mass == Mass::kMassless) {
     s = std::make_unique<nbm::MasslessNewmarkStepper>(problem, dt, 0.25, 0.5, nbm::Damping{},
                                                       nbm::ContactColumns::kAuto, energy);
@@ -86,8 +80,7 @@ Measured at_rest(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
   const Vector F = problem.to_internal(a.F), zero = Vector::Zero(n);
   s->initialize(zero, zero, F);
   for (int k = 0; k < settle; ++k) s->step(F);
-  const bool counts = energy != nbm::EnergyControl::kNone;
-  const long balanced_before = counts ? balanced_steps(*s) : 0;
+  const long balanced_before = s->balanced_steps();
   int switching = 0, fallbacks = 0;
   const double t0 = cpu_seconds();
   for (int k = 0; k < steps; ++k) {
@@ -97,7 +90,7 @@ Measured at_rest(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
   }
   m.step = (cpu_seconds() - t0) / steps;
   m.switching = static_cast<double>(switching) / steps;
-  m.balanced = counts ? static_cast<double>(balanced_steps(*s) - balanced_before) / steps : 0;
+  m.balanced = static_cast<double>(s->balanced_steps() - balanced_before) / steps;
   m.fallbacks = static_cast<double>(fallbacks) / steps;
   return m;
 }

@@ -42,21 +42,12 @@ struct Rest {
 };
 
 // The energy-stable steps' counters, for either mass treatment.
-double returnable(const nbm::Stepper& s) {
-  if (const auto* massless = dynamic_cast<const nbm::MasslessNewmarkStepper*>(&s))
-    return massless->returnable_loss();
-  return dynamic_cast<const nbm::NewmarkStepper&>(s).returnable_loss();
+const nbm::NbmStepper& nbm_stepper(const nbm::Stepper& s) {
+  return dynamic_cast<const nbm::NbmStepper&>(s);
 }
-long balanced_steps(const nbm::Stepper& s) {
-  if (const auto* massless = dynamic_cast<const nbm::MasslessNewmarkStepper*>(&s))
-    return massless->balanced_steps();
-  return dynamic_cast<const nbm::NewmarkStepper&>(s).balanced_steps();
-}
-bool energy_stable(const nbm::Stepper& s) {
-  if (const auto* massless = dynamic_cast<const nbm::MasslessNewmarkStepper*>(&s))
-    return massless->energy_stable();
-  return dynamic_cast<const nbm::NewmarkStepper&>(s).energy_stable();
-}
+double returnable(const nbm::Stepper& s) { return nbm_stepper(s).returnable_loss(); }
+long balanced_steps(const nbm::Stepper& s) { return nbm_stepper(s).balanced_steps(); }
+bool energy_stable(const nbm::Stepper& s) { return nbm_stepper(s).energy_stable(); }
 
 // The two mass treatments (method.md §4).
 enum class Mass { kMassless, kConsistent };

@@ -54,13 +54,11 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
                                                double beta, double gamma,
                                                const Damping& damping, ContactColumns columns,
                                                EnergyControl energy)
-    : NbmStepper(problem, dt, check_boundary_undamped(problem, damping)),
+    : NbmStepper(problem, dt, check_boundary_undamped(problem, damping), energy,
+                 beta == 0.25 && gamma == 0.5 && damping.b_K == 0),
       iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
       S_(*iteration_.S()),
-      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()),
-      energy_stable_(energy != EnergyControl::kNone && iteration_.beta() == 0.25 &&
-                     iteration_.gamma() == 0.5 && damping.b_K == 0),
-      budget_(energy) {
+      contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
   // M + E_C E_C' is definite and block diagonal (M_CO = 0): its solves give
   // M_OO^-1 r_O and leave the contact rows at r_C.
@@ -79,27 +77,6 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
     compliance = iteration_.contact_compliance();
   compliance *= iteration_.beta_dt2();
   lcp_ = std::make_unique<CachedLcpSolver>(std::move(compliance));
-}
-
-void MasslessNewmarkStepper::start(const ContactLoad& load) {
-  budget_.reset();
-  NbmStepper::start(load);
-}
-
-Vector MasslessNewmarkStepper::scheme_state() const {
-  return energy_stable_ ? budget_.state() : Vector();
-}
-
-void MasslessNewmarkStepper::carry_over(const Stepper& previous) {
-  const auto* massless = dynamic_cast<const MasslessNewmarkStepper*>(&previous);
-  if (energy_stable_ && massless) budget_.take_over(massless->budget_);
-}
-
-void MasslessNewmarkStepper::restore_scheme_state(const Vector& state) {
-  if (energy_stable_)
-    budget_.restore(state, "the energy-stable step");
-  else
-    Stepper::restore_scheme_state(state);
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {

@@ -70,7 +70,6 @@
 
 #include "linalg/lcp.hpp"
 #include "linalg/mass_solve.hpp"
-#include "time/energy_budget.hpp"
 #include "time/nbm_stepper.hpp"
 #include "time/newmark_iteration.hpp"
 
@@ -96,24 +95,6 @@ class MasslessNewmarkStepper final : public NbmStepper {
 
   /// Whether Y is kept.
   bool keeps_contact_columns() const { return keep_columns_; }
-  /// Whether the step is the energy-stable one (header): beta = 1/4,
-  /// gamma = 1/2 and no stiffness-proportional damping.
-  bool energy_stable() const { return energy_stable_; }
-  /// What switching steps have lost and a later step may still return
-  /// (EnergyControl::kBounded): E_n + D_n - W_n plus it never rises
-  /// (method.md §5.1). Negative by round-off where a step rose by round-off
-  /// (either control): the next switching steps take that back.
-  double returnable_loss() const { return budget_.returnable(); }
-  /// Steps since the start that were taken between the two candidates
-  /// (header): those on which the trapezoidal step would have gained more
-  /// than allowed.
-  long balanced_steps() const { return budget_.balanced_steps(); }
-  /// [returnable_loss()] with the energy-stable step, else empty.
-  Vector scheme_state() const override;
-  /// The returnable loss of a previous massless stepper (a global budget: it
-  /// outlives the contact set).
-  void carry_over(const Stepper& previous) override;
-
   using Stepper::step;
 
  protected:
@@ -125,9 +106,6 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// obstacle's rates matter only for the reported v_C, a_C).
   StepReport advance_interior(const ContactLoad& next) override;
   bool accounts_obstacle_work() const override { return energy_stable_; }
-  /// Nothing to return yet, then NbmStepper's start.
-  void start(const ContactLoad& load) override;
-  void restore_scheme_state(const Vector& state) override;
 
  private:
   /// a <- S^-1 (a - E_C lambda) with lambda the LCP's solution for
@@ -152,8 +130,6 @@ class MasslessNewmarkStepper final : public NbmStepper {
   SparseMatrix Y_;                        // L^-1 P E_C, if kept
   std::unique_ptr<CachedLcpSolver> lcp_;  // of beta dt^2 W_CC
   double contact_row_scale_;              // s of the header (1 without b_K)
-  bool energy_stable_;                    // the step of the header's "Energy"
-  EnergyBudget budget_;                   // what it bounds
   SparseMatrix interior_mass_;            // M + E_C E_C' (M_CC = 0, M_CO = 0)
   std::unique_ptr<MassSolver> mass_solver_;  // of interior_mass_
   // Workspaces of a step (sized by the first one).

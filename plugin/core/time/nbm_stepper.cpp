@@ -5,10 +5,31 @@
 
 namespace nbm {
 
-NbmStepper::NbmStepper(const ContactProblem& problem, double dt, const Damping& damping)
-    : Stepper(problem, dt, damping), boundary_(problem) {}
+NbmStepper::NbmStepper(const ContactProblem& problem, double dt, const Damping& damping,
+                       EnergyControl energy, bool has_energy_step)
+    : Stepper(problem, dt, damping),
+      boundary_(problem),
+      energy_stable_(has_energy_step && energy != EnergyControl::kNone),
+      budget_(energy) {}
+
+Vector NbmStepper::scheme_state() const {
+  return energy_stable_ ? budget_.state() : Vector();
+}
+
+void NbmStepper::carry_over(const Stepper& previous) {
+  const auto* nbm = dynamic_cast<const NbmStepper*>(&previous);
+  if (energy_stable_ && nbm && nbm->energy_stable_) budget_.take_over(nbm->budget_);
+}
+
+void NbmStepper::restore_scheme_state(const Vector& state) {
+  if (energy_stable_)
+    budget_.restore(state, "the energy-stable step");
+  else
+    Stepper::restore_scheme_state(state);
+}
 
 void NbmStepper::start(const ContactLoad& load) {
+  budget_.reset();
   active_ = boundary_.enforce(u_, F_, obstacle_.g, {}).active;
   rate_constraint(load, active_, h_);
   boundary_.project(v_, active_, h_);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "contact/nodal_boundary.hpp"
+#include "time/energy_budget.hpp"
 #include "time/stepper.hpp"
 
 namespace nbm {
@@ -17,11 +18,32 @@ class NbmStepper : public Stepper {
   /// lambda = F_C - (K u)_C (method.md §2).
   void reactions(Vector& lambda) const override { boundary_.reactions(u_, F_, lambda); }
 
- protected:
-  NbmStepper(const ContactProblem& problem, double dt, const Damping& damping);
+  /// Whether the scheme takes an energy-stable step (method.md §5.1, §5.3).
+  bool energy_stable() const { return energy_stable_; }
+  /// What switching steps have lost and a later step may still return
+  /// (EnergyControl::kBounded): E_n + D_n - W_n plus it never rises. Negative
+  /// by round-off where a step rose by round-off (either control): the next
+  /// balanced steps take that back.
+  double returnable_loss() const { return budget_.returnable(); }
+  /// Steps since the start that were taken between two candidates: those on
+  /// which the scheme's own step would have gained more than allowed.
+  long balanced_steps() const { return budget_.balanced_steps(); }
+  /// [returnable_loss()] with the energy-stable step, else empty.
+  Vector scheme_state() const override;
+  /// The returnable loss of a previous energy-stable run (a global budget:
+  /// it outlives the contact set).
+  void carry_over(const Stepper& previous) override;
 
-  /// u_C from the LCP, v_C = A v_O + e', then solve_acceleration.
+ protected:
+  /// `energy`: what the energy-stable step bounds, if the scheme has one
+  /// (`has_energy_step`) and energy is not kNone.
+  NbmStepper(const ContactProblem& problem, double dt, const Damping& damping,
+             EnergyControl energy = EnergyControl::kNone, bool has_energy_step = false);
+
+  /// u_C from the LCP, v_C = A v_O + e', then solve_acceleration (and
+  /// nothing returnable yet).
   void start(const ContactLoad& load) override;
+  void restore_scheme_state(const Vector& state) override;
   /// advance_interior(), then v_C and a_C from the nodal boundary relation of
   /// the new active set.
   StepReport advance(const ContactLoad& next) final;
@@ -55,6 +77,8 @@ class NbmStepper : public Stepper {
   double start_energy(double* roundoff);
 
   NodalBoundary boundary_;
+  const bool energy_stable_;  // the step of method.md §5.1 / §5.3 is taken
+  EnergyBudget budget_;       // what it bounds
   Vector u_start_, v_start_;  // the step's start, kept by the energy-stable steps
   Vector Ku_, Mv_;            // energy()'s products
 

@@ -9,34 +9,11 @@ namespace nbm {
 
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
                                NewmarkParameters parameters, const Damping& damping)
-    : NbmStepper(problem, dt, damping),
+    : NbmStepper(problem, dt, damping, parameters.energy,
+                 parameters.beta == 0.25 && parameters.gamma == 0.5 && damping.none()),
       parameters_(parameters),
       iteration_(problem, dt, parameters.beta, parameters.gamma, C_),
-      solver_(iteration_.S(), problem.constraint_basis()),
-      energy_stable_(parameters.energy != EnergyControl::kNone && parameters.beta == 0.25 &&
-                     parameters.gamma == 0.5 && !damped()),
-      budget_(parameters.energy) {}
-
-void NewmarkStepper::start(const ContactLoad& load) {
-  budget_.reset();
-  NbmStepper::start(load);
-}
-
-Vector NewmarkStepper::scheme_state() const {
-  return energy_stable_ ? budget_.state() : Vector();
-}
-
-void NewmarkStepper::carry_over(const Stepper& previous) {
-  const auto* newmark = dynamic_cast<const NewmarkStepper*>(&previous);
-  if (energy_stable_ && newmark) budget_.take_over(newmark->budget_);
-}
-
-void NewmarkStepper::restore_scheme_state(const Vector& state) {
-  if (energy_stable_)
-    budget_.restore(state, "the energy-stable step");
-  else
-    Stepper::restore_scheme_state(state);
-}
+      solver_(iteration_.S(), problem.constraint_basis()) {}
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.

@@ -9,7 +9,6 @@
 
 #include "linalg/constrained_solver.hpp"
 #include "linalg/lcp.hpp"
-#include "time/energy_budget.hpp"
 #include "time/nbm_stepper.hpp"
 #include "time/newmark_iteration.hpp"
 
@@ -35,21 +34,11 @@ class NewmarkStepper final : public NbmStepper {
   using Stepper::step;
 
   const NewmarkParameters& parameters() const { return parameters_; }
-  /// Whether the step is the energy-stable one (method.md §5.3).
-  bool energy_stable() const { return energy_stable_; }
-  /// As MasslessNewmarkStepper's (energy_budget.hpp).
-  double returnable_loss() const { return budget_.returnable(); }
-  long balanced_steps() const { return budget_.balanced_steps(); }
-  /// [returnable_loss()] with the energy-stable step, else empty.
-  Vector scheme_state() const override;
-  void carry_over(const Stepper& previous) override;
 
  protected:
   const SparseMatrix& mass() const override { return problem_.M(); }
   void solve_acceleration(const ContactLoad& load) override;
   StepReport advance_interior(const ContactLoad& next) override;
-  void start(const ContactLoad& load) override;
-  void restore_scheme_state(const Vector& state) override;
 
  private:
   /// u_{n+1} and a_{n+1} for a given active set from the predictor u_pred:
@@ -102,9 +91,7 @@ class NewmarkStepper final : public NbmStepper {
   std::size_t n_tried_ = 0;
   // The energy-stable step: M with the relation's constraints (velocity
   // projections, consistent accelerations), the LCP of a half step
-  // ((dt/2)^2 W_CC), the budget, the candidates and workspaces.
-  bool energy_stable_ = false;
-  EnergyBudget budget_;
+  // ((dt/2)^2 W_CC), the candidates and workspaces.
   std::unique_ptr<ConstrainedSolver> mass_;
   std::unique_ptr<CachedLcpSolver> half_lcp_;
   Vector u_paper_, v_paper_, u_dissipative_, v_dissipative_, u_best_, v_best_, load_mean_;
