@@ -193,7 +193,9 @@ class Solver {
   std::vector<long> active() const;       ///< 1 where the contact is closed
   std::vector<double> acceleration() const;
   /// The scheme's own part of the state (Moreau-Jean: the last impulse per
-  /// contact node; empty for the NBM schemes), for restart().
+  /// contact node; the energy-stable steps of the NBM schemes: the loss a
+  /// later step may give back, method.md §5.1; empty otherwise), for
+  /// restart().
   std::vector<double> scheme_state() const;
   /// kinetic, elastic, load potential, total (their sum), the work done by a
   /// moving obstacle since the start (method.md §8) and the energy dissipated
