@@ -19,7 +19,9 @@
 // (energy and amplitude about the static state; probe_amplitude: (max - min) / 2
 // of u[probe] over the period, the amplitude nbmForcedResponse reports; events:
 // grazing, fold-frequency, fold-energy, stability; user_backbone.hpp). Returns
-// the number of orbits.
+// the number of orbits. The last two orbits become the object's last orbits:
+// the nbmOrbit* functions read the last one (nbmOrbitState, ...), and
+// nbmContinueOrbit goes on along the backbone from them.
 #include <fstream>
 #include <iostream>
 
@@ -43,7 +45,8 @@ class Backbone : public E_F0mps {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmBackbone";
-    nbm::Solver& solver = solver_of(GetAny<NbmHandle*>((*handle)(s)), fn);
+    ModelHandle* h = GetAny<ModelHandle*>((*handle)(s));
+    const nbm::Model& model = periodic_model_of(h, fn);
     nbm::BackboneOptions o;
     o.points = GetAny<long>((*points)(s));
     o.step = GetAny<double>((*step)(s));
@@ -63,8 +66,11 @@ class Backbone : public E_F0mps {
       csv << "omega,period,energy,amplitude,contact_time,switches,max_multiplier,stable,"
              "periodicity,probe_amplitude,probe_min,probe_max,events\n";
     }
-    const nbm::BackboneReport r =
-        guarded(fn, [&] { return nbm::backbone(solver.problem(), FF, j, o); });
+    nbm::BackboneReport r = guarded(fn, [&] { return nbm::backbone(model.problem(), FF, j, o); });
+    // Its last two orbits become the object's: nbmOrbit* read the last one,
+    // nbmContinueOrbit goes on along the backbone.
+    if (r.previous.model) h->remember(std::move(r.previous));
+    h->remember(std::move(r.last));
     std::cout << r.summary;
     const long n = static_cast<long>(r.points.size());
     constexpr int columns = 12;
@@ -97,7 +103,7 @@ basicAC_F0::name_and_type Backbone::name_param[] = {
 class BackboneOp : public OneOperator {
  public:
   BackboneOp()
-      : OneOperator(atype<long>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<long>(),
+      : OneOperator(atype<long>(), atype<ModelHandle*>(), atype<KN<double>*>(), atype<long>(),
                     atype<long>(), atype<double>(), atype<string*>()) {}
   E_F0* code(const basicAC_F0& args) const override {
     Expression e[6];

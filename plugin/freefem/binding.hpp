@@ -4,11 +4,13 @@
 #pragma once
 
 #include <exception>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "ff++.hpp"
 #include "AFunction_ext.hpp"
+#include "api/model.hpp"
 #include "api/solver.hpp"
 #include "periodic/user_orbit.hpp"
 
@@ -16,26 +18,61 @@ using namespace Fem2D;
 
 namespace nbm_binding {
 
-// The script-side object: the solver, null until constructed, and the two
-// last periodic orbits computed on it (continuation steps from them).
-struct NbmHandle {
-  nbm::Solver* solver;
+// The script-side model (NBMModel Mo(M, K, cdofs, normals, gaps, ...)): the
+// structure, shared with the NBM objects built from it, and the two last
+// periodic orbits computed on it (continuation steps from them). Every
+// periodic call takes one; an NBM object passes as its model (a FreeFEM
+// cast, nbm_plugin.cpp).
+struct ModelHandle {
+  std::shared_ptr<const nbm::Model>* model;  // null until constructed
   nbm::OrbitReport* orbit;     // the last periodic orbit (orbit_functions.cpp)
   nbm::OrbitReport* previous;  // the one before
+  void init() {
+    model = nullptr;
+    orbit = nullptr;
+    previous = nullptr;
+  }
+  /// Drops the orbits (they refer to the model's contact problem).
+  void forget_orbits() {
+    delete orbit;
+    delete previous;
+    orbit = previous = nullptr;
+  }
+  /// Makes `r` the last orbit; the last one becomes the previous one.
+  void remember(nbm::OrbitReport&& r) {
+    delete previous;
+    previous = orbit;
+    orbit = new nbm::OrbitReport(std::move(r));
+  }
+  /// Makes `m` the model of the handle; the orbits of the last one go.
+  void set_model(std::shared_ptr<const nbm::Model> m) {
+    forget_orbits();
+    delete model;
+    model = new std::shared_ptr<const nbm::Model>(std::move(m));
+  }
+  void destroy() {
+    forget_orbits();
+    delete model;
+    init();
+  }
+};
+
+// The script-side time integrator (NBM S(Mo, dt=...) or the shorthand
+// NBM S(M, K, cdofs, normals, gaps, dt=...)): a model and its solver.
+struct NbmHandle : ModelHandle {
+  nbm::Solver* solver;
   // Nodes outside the contact set inside the obstacle (obstacle=): the last
   // step's count, whether a message was printed, and crossings = "error".
   long crossings;
   bool crossings_reported, crossings_fatal;
   void init() {
+    ModelHandle::init();
     solver = nullptr;
-    orbit = nullptr;
-    previous = nullptr;
     crossings = 0;
     crossings_reported = crossings_fatal = false;
   }
   void destroy() {
-    delete orbit;  // they refer to the solver's problem: go first
-    delete previous;
+    ModelHandle::destroy();  // the orbits refer to the model: go first
     delete solver;
     init();
   }
@@ -67,13 +104,34 @@ auto guarded(const char* function, F&& f) -> decltype(f()) {
 inline nbm::Solver& solver_of(NbmHandle* h, const char* function) {
   if (!h || !h->solver)
     fail(std::string(function) + ": the NBM object was not constructed (declare it as "
-         "NBM S(M, K, cdofs, normals, gaps, dt=...))");
+         "NBM S(Mo, dt=...) on an NBMModel Mo, or NBM S(M, K, cdofs, normals, gaps, dt=...))");
   return *h->solver;
 }
 
-inline nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* name) {
+inline const nbm::Model& model_of(ModelHandle* h, const char* function) {
+  if (!h || !h->model)
+    fail(std::string(function) + ": the model was not constructed (an NBMModel or NBM "
+         "declared without arguments; construct it as NBMModel Mo(M, K, cdofs, normals, gaps, "
+         "...) or NBM S(...))");
+  return **h->model;
+}
+
+/// The model of a periodic call: one whose contact nodes have fixed normals
+/// and gaps (the periodic tools do not follow an obstacle= frame).
+inline const nbm::Model& periodic_model_of(ModelHandle* h, const char* function) {
+  const nbm::Model& m = model_of(h, function);
+  if (m.options().obstacle)
+    fail(std::string(function) + ": the model holds its obstacle with a contact frame that "
+         "follows the body (obstacle=), which the periodic tools do not follow; build the "
+         "model without obstacle=, with the obstacle's contact description (normals and "
+         "gaps along them, e.g. nbmContactCircle)");
+  return m;
+}
+
+inline nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* function, const char* name) {
   if (!A || !A->pHM())
-    fail(std::string("NBM: matrix ") + name + " is empty or not an assembled sparse matrix");
+    fail(std::string(function) + ": matrix " + name +
+         " is empty or not an assembled sparse matrix");
   const HashMatrix<int, double>& H = *A->pHM();
   nbm::CooMatrix coo;
   coo.rows = H.n;

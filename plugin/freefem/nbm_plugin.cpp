@@ -1,9 +1,13 @@
-// FreeFEM binding of the nbm core: the `NBM` solver type and its functions.
+// FreeFEM binding of the nbm core: the `NBMModel` and `NBM` types and their
+// functions.
 //
 //   load "nbm"
-//   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "newmark",
-//         beta = 0.25, gamma = 0.5, fixed = fixedDofs,
-//         mass = "redistributed", positions = xy);   // massless boundary
+//   NBMModel Mo(M, K, cdofs, normals, gaps, fixed = fixedDofs,
+//               mass = "redistributed", positions = xy);  // the structure, once
+//   NBM S(Mo, dt = 1e-3, scheme = "newmark", beta = 0.25, gamma = 0.5);
+//   nbmPeriodicOrbit(Mo, u, v, T, F, ...);  // periodic tools take the model
+//   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, ...);  // shorthand: a model
+//                                   // of its own (every named argument above)
 //   NBM E(..., mass = "redistributed", positions = xy,
 //         energy = "monotone");  // or "bounded" (default), method.md §5.1
 //   NBM P(M, K, cdofs, normals, gaps, dt = 1e-3, scheme = "moreau-jean",
@@ -34,96 +38,172 @@ using namespace nbm_binding;
 
 namespace {
 
-// NBM S(M, K, cdofs, normals, gaps, dt=..., scheme=..., beta=..., gamma=..., fixed=...)
-class NbmConstruct : public E_F0mps {
+// The named arguments of a model (NBMModel, and the shorthand NBM), in this
+// order.
+constexpr int kModelParams = 7;
+#define NBM_MODEL_PARAMS                                                        \
+  {"fixed", &typeid(KN<long>*)}, {"mass", &typeid(string*)},                    \
+      {"positions", &typeid(KN<double>*)}, {"rayleighM", &typeid(double)},      \
+      {"rayleighK", &typeid(double)}, {"damping", &typeid(Matrice_Creuse<double>*)}, \
+      {"obstacle", &typeid(ObstacleHandle*)}
+// The named arguments of a time integrator (NBM), in this order.
+constexpr int kSchemeParams = 7;
+#define NBM_SCHEME_PARAMS                                                       \
+  {"dt", &typeid(double)}, {"scheme", &typeid(string*)}, {"beta", &typeid(double)}, \
+      {"gamma", &typeid(double)}, {"restitution", &typeid(double)},             \
+      {"energy", &typeid(string*)}, {"crossings", &typeid(string*)}
+
+// The model of (M, K, cdofs, normals, gaps) and the named arguments `a`
+// (NBM_MODEL_PARAMS), built by `function`.
+std::shared_ptr<const nbm::Model> build_model(Stack s, const Expression (&e)[5],
+                                              const Expression* a, const char* function) {
+  nbm::ModelOptions opt;
+  if (a[0]) opt.fixed = vector_of<long>(GetAny<KN<long>*>((*a[0])(s)), function, "fixed");
+  if (a[1]) opt.mass = *GetAny<string*>((*a[1])(s));
+  if (a[2])
+    opt.positions = vector_of<double>(GetAny<KN<double>*>((*a[2])(s)), function, "positions");
+  if (a[3]) opt.rayleigh_mass = GetAny<double>((*a[3])(s));
+  if (a[4]) opt.rayleigh_stiffness = GetAny<double>((*a[4])(s));
+  if (a[5]) opt.damping = coo_of(GetAny<Matrice_Creuse<double>*>((*a[5])(s)), function, "damping");
+  if (a[6]) {
+    const ObstacleHandle* o = GetAny<ObstacleHandle*>((*a[6])(s));
+    if (!o || !o->description)
+      fail(std::string(function) + ": obstacle: the NBMObstacle was not constructed");
+    opt.obstacle = *o->description;
+  }
+  nbm::ContactDescription contact;
+  contact.dofs = vector_of<long>(GetAny<KN<long>*>((*e[2])(s)), function, "contact dofs");
+  contact.normals = vector_of<double>(GetAny<KN<double>*>((*e[3])(s)), function, "normals");
+  contact.gaps = vector_of<double>(GetAny<KN<double>*>((*e[4])(s)), function, "gaps");
+  const nbm::CooMatrix Mc = coo_of(GetAny<Matrice_Creuse<double>*>((*e[0])(s)), function, "M");
+  const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*e[1])(s)), function, "K");
+  // on()'s conventions: the dofs with a tgv penalty join fixed=.
+  opt.fixed = guarded(function, [&] { return dirichlet_dofs(Mc, Kc, std::move(opt.fixed)); });
+  return guarded(function,
+                 [&] { return std::make_shared<const nbm::Model>(Mc, Kc, contact, opt); });
+}
+
+// Builds the time integrator of `model` with the named arguments `a`
+// (NBM_SCHEME_PARAMS) into h.
+void build_solver(Stack s, NbmHandle* h, std::shared_ptr<const nbm::Model> model,
+                  const Expression* a) {
+  nbm::SchemeOptions opt;
+  if (!a[0]) fail("NBM: the time step dt=... is required");
+  opt.dt = GetAny<double>((*a[0])(s));
+  if (a[1]) opt.scheme = *GetAny<string*>((*a[1])(s));
+  if (a[2]) opt.beta = GetAny<double>((*a[2])(s));
+  if (a[3]) opt.gamma = GetAny<double>((*a[3])(s));
+  if (a[4]) opt.restitution = GetAny<double>((*a[4])(s));
+  if (a[5]) opt.energy = *GetAny<string*>((*a[5])(s));
+  bool fatal = false;
+  if (a[6]) {
+    const string mode = *GetAny<string*>((*a[6])(s));
+    if (mode != "warn" && mode != "error")
+      fail("NBM: crossings: \"" + mode + "\", expected \"warn\" or \"error\"");
+    if (!model->options().obstacle) fail("NBM: crossings: given without obstacle=, which it watches");
+    fatal = mode == "error";
+  }
+  nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(model, opt); });
+  h->destroy();  // the old solver and any orbit computed on it
+  h->solver = solver;
+  h->set_model(std::move(model));
+  h->crossings_fatal = fatal;
+}
+
+// A constructor from (M, K, cdofs, normals, gaps) after the handle, with
+// the N named arguments of Derived::name_param.
+template <class Derived, int N>
+class ConstructFromMatrices : public E_F0mps {
  public:
-  static const int n_name_param = 14;
+  static const int n_name_param = N;
+  Expression nargs[N];
+  Expression handle;
+  Expression e[5];  // M, K, cdofs, normals, gaps
+
+  ConstructFromMatrices(const basicAC_F0& args, const Expression (&x)[6]) : handle(x[0]) {
+    for (int k = 0; k < 5; ++k) e[k] = x[k + 1];
+    args.SetNameParam(N, Derived::name_param, nargs);
+  }
+};
+
+// NBMModel Mo(M, K, cdofs, normals, gaps, fixed=..., mass=..., ...)
+class ModelConstruct : public ConstructFromMatrices<ModelConstruct, kModelParams> {
+ public:
+  static basicAC_F0::name_and_type name_param[];
+  using ConstructFromMatrices::ConstructFromMatrices;
+
+  AnyType operator()(Stack s) const override {
+    ModelHandle* h = GetAny<ModelHandle*>((*handle)(s));
+    h->set_model(build_model(s, e, nargs, "NBMModel"));
+    return h;
+  }
+  operator aType() const override { return atype<ModelHandle*>(); }
+};
+basicAC_F0::name_and_type ModelConstruct::name_param[] = {NBM_MODEL_PARAMS};
+
+// NBM S(M, K, cdofs, normals, gaps, dt=..., ...): the shorthand, a model of
+// its own and its integrator.
+class NbmConstruct
+    : public ConstructFromMatrices<NbmConstruct, kSchemeParams + kModelParams> {
+ public:
+  static basicAC_F0::name_and_type name_param[];
+  using ConstructFromMatrices::ConstructFromMatrices;
+
+  AnyType operator()(Stack s) const override {
+    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
+    if (!nargs[0]) fail("NBM: the time step dt=... is required");  // before the model's work
+    build_solver(s, h, build_model(s, e, nargs + kSchemeParams, "NBM"), nargs);
+    return h;
+  }
+  operator aType() const override { return atype<NbmHandle*>(); }
+};
+basicAC_F0::name_and_type NbmConstruct::name_param[] = {NBM_SCHEME_PARAMS, NBM_MODEL_PARAMS};
+
+// NBM S(Mo, dt=..., ...): the time integrator of the model Mo.
+class NbmOfModel : public E_F0mps {
+ public:
+  static const int n_name_param = kSchemeParams;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
-  Expression handle, M, K, dofs, normals, gaps;
+  Expression handle, model;
 
-  NbmConstruct(const basicAC_F0& args, const Expression (&e)[6])
-      : handle(e[0]), M(e[1]), K(e[2]), dofs(e[3]), normals(e[4]), gaps(e[5]) {
+  NbmOfModel(const basicAC_F0& args, const Expression (&x)[2]) : handle(x[0]), model(x[1]) {
     args.SetNameParam(n_name_param, name_param, nargs);
   }
 
   AnyType operator()(Stack s) const override {
     NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
-    nbm::SolverOptions opt;
-    if (!nargs[0]) fail("NBM: the time step dt=... is required");
-    opt.dt = GetAny<double>((*nargs[0])(s));
-    if (nargs[1]) opt.scheme = *GetAny<string*>((*nargs[1])(s));
-    if (nargs[2]) opt.beta = GetAny<double>((*nargs[2])(s));
-    if (nargs[3]) opt.gamma = GetAny<double>((*nargs[3])(s));
-    if (nargs[4]) opt.fixed = vector_of<long>(GetAny<KN<long>*>((*nargs[4])(s)), "NBM", "fixed");
-    if (nargs[5]) opt.mass = *GetAny<string*>((*nargs[5])(s));
-    if (nargs[6])
-      opt.positions = vector_of<double>(GetAny<KN<double>*>((*nargs[6])(s)), "NBM", "positions");
-    if (nargs[7]) opt.restitution = GetAny<double>((*nargs[7])(s));
-    if (nargs[8]) opt.rayleigh_mass = GetAny<double>((*nargs[8])(s));
-    if (nargs[9]) opt.rayleigh_stiffness = GetAny<double>((*nargs[9])(s));
-    if (nargs[10])
-      opt.damping = coo_of(GetAny<Matrice_Creuse<double>*>((*nargs[10])(s)), "damping");
-    if (nargs[11]) {
-      const ObstacleHandle* o = GetAny<ObstacleHandle*>((*nargs[11])(s));
-      if (!o || !o->description) fail("NBM: obstacle: the NBMObstacle was not constructed");
-      opt.obstacle = *o->description;
-    }
-    nbm::ContactDescription contact;
-    contact.dofs = vector_of<long>(GetAny<KN<long>*>((*dofs)(s)), "NBM", "contact dofs");
-    contact.normals = vector_of<double>(GetAny<KN<double>*>((*normals)(s)), "NBM", "normals");
-    contact.gaps = vector_of<double>(GetAny<KN<double>*>((*gaps)(s)), "NBM", "gaps");
-    const nbm::CooMatrix Mc = coo_of(GetAny<Matrice_Creuse<double>*>((*M)(s)), "M");
-    const nbm::CooMatrix Kc = coo_of(GetAny<Matrice_Creuse<double>*>((*K)(s)), "K");
-    // on()'s conventions: the dofs with a tgv penalty join fixed=.
-    opt.fixed = guarded("NBM", [&] { return dirichlet_dofs(Mc, Kc, std::move(opt.fixed)); });
-    bool fatal = false;
-    if (nargs[12]) {
-      const string mode = *GetAny<string*>((*nargs[12])(s));
-      if (mode != "warn" && mode != "error")
-        fail("NBM: crossings: \"" + mode + "\", expected \"warn\" or \"error\"");
-      if (!opt.obstacle) fail("NBM: crossings: given without obstacle=, which it watches");
-      fatal = mode == "error";
-    }
-    if (nargs[13]) opt.energy = *GetAny<string*>((*nargs[13])(s));
-    nbm::Solver* solver = guarded("NBM", [&] { return new nbm::Solver(Mc, Kc, contact, opt); });
-    h->destroy();  // the old solver and any orbit computed on it
-    h->solver = solver;
-    h->crossings_fatal = fatal;
+    ModelHandle* m = GetAny<ModelHandle*>((*model)(s));
+    if (!m || !m->model)
+      fail("NBM: the model was not constructed (declare it as NBMModel Mo(M, K, cdofs, "
+           "normals, gaps, ...))");
+    if (static_cast<ModelHandle*>(h) == m)
+      fail("NBM: the NBM object cannot be built on its own model");
+    build_solver(s, h, *m->model, nargs);
     return h;
   }
   operator aType() const override { return atype<NbmHandle*>(); }
 };
+basicAC_F0::name_and_type NbmOfModel::name_param[] = {NBM_SCHEME_PARAMS};
 
-basicAC_F0::name_and_type NbmConstruct::name_param[] = {
-    {"dt", &typeid(double)},
-    {"scheme", &typeid(string*)},
-    {"beta", &typeid(double)},
-    {"gamma", &typeid(double)},
-    {"fixed", &typeid(KN<long>*)},
-    {"mass", &typeid(string*)},
-    {"positions", &typeid(KN<double>*)},
-    {"restitution", &typeid(double)},
-    {"rayleighM", &typeid(double)},
-    {"rayleighK", &typeid(double)},
-    {"damping", &typeid(Matrice_Creuse<double>*)},
-    {"obstacle", &typeid(ObstacleHandle*)},
-    {"crossings", &typeid(string*)},
-    {"energy", &typeid(string*)},
-};
-
-class NbmConstructOp : public OneOperator {
+// The operator `<-` of a constructor C whose positional arguments have the
+// types Args (after the handle of type Handle*).
+template <class C, class Handle, class... Args>
+class ConstructOp : public OneOperator {
  public:
-  NbmConstructOp()
-      : OneOperator(atype<NbmHandle*>(), atype<NbmHandle*>(), atype<Matrice_Creuse<double>*>(),
-                    atype<Matrice_Creuse<double>*>(), atype<KN<long>*>(), atype<KN<double>*>(),
-                    atype<KN<double>*>()) {}
+  ConstructOp() : OneOperator(atype<Handle*>(), atype<Handle*>(), atype<Args>()...) {}
   E_F0* code(const basicAC_F0& args) const override {
-    Expression e[6];
-    for (int k = 0; k < 6; ++k) e[k] = t[k]->CastTo(args[k]);
-    return new NbmConstruct(args, e);
+    Expression e[1 + sizeof...(Args)];
+    for (int k = 0; k < 1 + static_cast<int>(sizeof...(Args)); ++k) e[k] = t[k]->CastTo(args[k]);
+    return new C(args, e);
   }
 };
+using Matrix = Matrice_Creuse<double>*;
+using ModelConstructOp =
+    ConstructOp<ModelConstruct, ModelHandle, Matrix, Matrix, KN<long>*, KN<double>*, KN<double>*>;
+using NbmConstructOp =
+    ConstructOp<NbmConstruct, NbmHandle, Matrix, Matrix, KN<long>*, KN<double>*, KN<double>*>;
+using NbmOfModelOp = ConstructOp<NbmOfModel, NbmHandle, ModelHandle*>;
 
 // The state vectors cross the boundary as std::vector copies: O(n) per step,
 // negligible next to a sparse solve.
@@ -202,6 +282,7 @@ long nbm_replace_contacts(NbmHandle* const& h, KN<long>* const& dofs, KN<double>
   std::vector<double> vv = vector_of<double>(v, f, "v");
   const std::vector<double> FF = vector_of<double>(F, f, "F");
   guarded(f, [&] { S.replace_contacts(contact, uu, vv, FF); });
+  h->set_model(S.model());  // the orbits computed on the old contact set go
   assign(u, uu);
   assign(v, vv);
   return S.n_contact();
@@ -279,14 +360,15 @@ long nbm_scheme_state(NbmHandle* const& h, KN<double>* const& out) {
   assign(out, S.scheme_state());
   return out->N();
 }
-long nbm_fixed(NbmHandle* const& h, KN<long>* const& out) {
-  assign(out, solver_of(h, "nbmFixedDofs").fixed_dofs());
+// Of the model (an NBM object passes its own).
+long nbm_fixed(ModelHandle* const& h, KN<long>* const& out) {
+  assign(out, model_of(h, "nbmFixedDofs").fixed_dofs());
   return out->N();
 }
+long nbm_n_contact(ModelHandle* const& h) { return model_of(h, "nbmContactNodes").n_contact(); }
 double nbm_time(NbmHandle* const& h) { return solver_of(h, "nbmTime").time(); }
 double nbm_critical_dt(NbmHandle* const& h) { return solver_of(h, "nbmCriticalDt").critical_dt(); }
 long nbm_fallbacks(NbmHandle* const& h) { return solver_of(h, "nbmFallbacks").fallbacks(); }
-long nbm_n_contact(NbmHandle* const& h) { return solver_of(h, "nbmContactNodes").n_contact(); }
 long nbm_crossings(NbmHandle* const& h) {
   solver_of(h, "nbmCrossings");
   return h->crossings;
@@ -294,9 +376,17 @@ long nbm_crossings(NbmHandle* const& h) {
 
 void Load_Init() {
   load_obstacle_functions();  // NBMObstacle, which NBM's obstacle= takes
+  Dcl_Type<ModelHandle*>(InitP<ModelHandle>, Destroy<ModelHandle>);
+  zzzfff->Add("NBMModel", atype<ModelHandle*>());
+  TheOperators->Add("<-", new ModelConstructOp);
   Dcl_Type<NbmHandle*>(InitP<NbmHandle>, Destroy<NbmHandle>);
   zzzfff->Add("NBM", atype<NbmHandle*>());
+  TheOperators->Add("<-", new NbmOfModelOp);
   TheOperators->Add("<-", new NbmConstructOp);
+  // An NBM object is also its model: every call taking an NBMModel (the
+  // periodic tools, NBM S(Mo, ...)) takes it.
+  map_type[typeid(ModelHandle*).name()]->AddCast(
+      new E_F1_funcT<ModelHandle*, NbmHandle*>(Cast<ModelHandle*, NbmHandle*>));
 
   using H = NbmHandle*;
   using R = KN<double>*;
@@ -316,11 +406,11 @@ void Load_Init() {
   Global.Add("nbmActive", "(", new OneOperator2_<long, H, KN<long>*>(nbm_active));
   Global.Add("nbmEnergies", "(", new OneOperator2_<long, H, R>(nbm_energies));
   Global.Add("nbmAcceleration", "(", new OneOperator2_<long, H, R>(nbm_acceleration));
-  Global.Add("nbmFixedDofs", "(", new OneOperator2_<long, H, KN<long>*>(nbm_fixed));
+  Global.Add("nbmFixedDofs", "(", new OneOperator2_<long, ModelHandle*, KN<long>*>(nbm_fixed));
   Global.Add("nbmTime", "(", new OneOperator1_<double, H>(nbm_time));
   Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
-  Global.Add("nbmContactNodes", "(", new OneOperator1_<long, H>(nbm_n_contact));
+  Global.Add("nbmContactNodes", "(", new OneOperator1_<long, ModelHandle*>(nbm_n_contact));
   Global.Add("nbmCrossings", "(", new OneOperator1_<long, H>(nbm_crossings));
   load_orbit_functions();
   load_backbone_functions();

@@ -1,4 +1,6 @@
-// FreeFEM functions of the periodic-orbit solvers (core: plugin/core/periodic):
+// FreeFEM functions of the periodic-orbit solvers (core: plugin/core/periodic).
+// They take the model, an NBMModel Mo (no time step, no time-stepping
+// factorization) or an NBM object S (its model); S below is either:
 //
 //   real T = nbmPeriodicOrbit(S, u, v, T0, F,            // guess (u, v, T0), load F
 //              method = "shooting",                      // or "harmonic-balance"
@@ -26,11 +28,11 @@
 // Forced orbits (method.md §9; core: user_forced_orbit.hpp), under the load
 // F(t) = F0 + sum_k Fc(:, k-1) cos(k omega t) + Fs(:, k-1) sin(k omega t)
 // and moving obstacles, gaps g(t) = g0 + sum_k gapCos(:, k-1) cos(k omega t)
-// + gapSin(:, k-1) sin(k omega t) (g0: the NBM object's gaps, method.md §8):
+// + gapSin(:, k-1) sin(k omega t) (g0: the model's gaps, method.md §8):
 //   real T = nbmForcedOrbit(S, F0, Fc, Fs, omega, u, v,  // guess (u, v) at t = 0
-//              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K (+ the NBM
-//                                              // object's damping= matrix, if any);
-//                                              // default: the NBM object's coefficients
+//              rayleighM = aM, rayleighK = bK, // damping C = aM M + bK K (+ the
+//                                              // model's damping= matrix, if any);
+//                                              // default: the model's coefficients
 //              subharmonic = 1,                // period 2 pi m / omega
 //              probe = dof,                    // amplitude of this dof (default:
 //                                              // the dof of largest amplitude)
@@ -91,8 +93,8 @@
 namespace nbm_binding {
 namespace {
 
-const nbm::OrbitReport& orbit_of(NbmHandle* h, const char* function) {
-  solver_of(h, function);
+const nbm::OrbitReport& orbit_of(ModelHandle* h, const char* function) {
+  model_of(h, function);
   if (!h->orbit)
     fail(std::string(function) + ": no periodic orbit computed yet (call nbmPeriodicOrbit first)");
   return *h->orbit;
@@ -100,10 +102,8 @@ const nbm::OrbitReport& orbit_of(NbmHandle* h, const char* function) {
 
 // Makes `report` the last orbit of h (the last one becomes the previous
 // one) and copies its initial state to u, v; returns its period.
-double keep(NbmHandle* h, nbm::OrbitReport&& report, KN<double>* u, KN<double>* v) {
-  delete h->previous;
-  h->previous = h->orbit;
-  h->orbit = new nbm::OrbitReport(std::move(report));
+double keep(ModelHandle* h, nbm::OrbitReport&& report, KN<double>* u, KN<double>* v) {
+  h->remember(std::move(report));
   assign(u, h->orbit->u0);
   assign(v, h->orbit->v0);
   return h->orbit->period;
@@ -123,8 +123,8 @@ class PeriodicOrbit : public E_F0mps {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmPeriodicOrbit";
-    NbmHandle* h = GetAny<NbmHandle*>((*handle)(s));
-    nbm::Solver& solver = solver_of(h, fn);
+    ModelHandle* h = GetAny<ModelHandle*>((*handle)(s));
+    const nbm::Model& model = periodic_model_of(h, fn);
     KN<double>* U = GetAny<KN<double>*>((*u)(s));
     KN<double>* V = GetAny<KN<double>*>((*v)(s));
     if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
@@ -146,7 +146,7 @@ class PeriodicOrbit : public E_F0mps {
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
     const double T0 = GetAny<double>((*T)(s));
     auto report = guarded(fn, [&] {
-      return nbm::periodic_orbit(solver.problem(), FF, uu, vv, T0, o);
+      return nbm::periodic_orbit(model.problem(), FF, uu, vv, T0, o);
     });
     return SetAny<double>(keep(h, std::move(report), U, V));
   }
@@ -165,7 +165,7 @@ basicAC_F0::name_and_type PeriodicOrbit::name_param[] = {
 class PeriodicOrbitOp : public OneOperator {
  public:
   PeriodicOrbitOp()
-      : OneOperator(atype<double>(), atype<NbmHandle*>(), atype<KN<double>*>(),
+      : OneOperator(atype<double>(), atype<ModelHandle*>(), atype<KN<double>*>(),
                     atype<KN<double>*>(), atype<double>(), atype<KN<double>*>()) {}
   E_F0* code(const basicAC_F0& args) const override {
     Expression e[5];
@@ -191,12 +191,12 @@ std::vector<std::vector<double>> harmonics_of(KN<double>* x, const char* fn, con
 
 // The options of a forced orbit from the first six named arguments
 // (rayleighM, rayleighK, subharmonic, probe, transient, iterations) of
-// nbmForcedOrbit and nbmForcedResponse; the damping defaults to the NBM
-// object's Rayleigh coefficients, and its damping matrix (if any) is always
+// nbmForcedOrbit and nbmForcedResponse; the damping defaults to the
+// model's Rayleigh coefficients, and its damping matrix (if any) is always
 // part of the model.
-nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expression* nargs,
+nbm::ForcedOrbitOptions forced_options(const nbm::Model& model, const Expression* nargs,
                                        Stack s, double omega, const char* fn) {
-  const nbm::SolverOptions& so = solver.options();
+  const nbm::ModelOptions& so = model.options();
   nbm::ForcedOrbitOptions o;
   o.omega = omega;
   o.rayleigh_mass = nargs[0] ? GetAny<double>((*nargs[0])(s)) : so.rayleigh_mass;
@@ -213,8 +213,8 @@ nbm::ForcedOrbitOptions forced_options(const nbm::Solver& solver, const Expressi
 // (S, F0, Fc, Fs, omega, u, v): H is KNM<double>* (one column per harmonic)
 // or KN<double>* (one harmonic).
 struct ForcedInputs {
-  NbmHandle* h;
-  nbm::Solver* solver;
+  ModelHandle* h;
+  const nbm::Model* model;
   KN<double>* U;
   KN<double>* V;
   nbm::ForcedOrbitOptions options;
@@ -234,12 +234,12 @@ class ForcedCall : public E_F0mps {
   /// forced_options, and holds gapCos, gapSin at `gaps`, `gaps` + 1.
   ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn) const {
     ForcedInputs in;
-    in.h = GetAny<NbmHandle*>((*handle)(s));
-    in.solver = &solver_of(in.h, fn);
+    in.h = GetAny<ModelHandle*>((*handle)(s));
+    in.model = &periodic_model_of(in.h, fn);
     in.U = GetAny<KN<double>*>((*u)(s));
     in.V = GetAny<KN<double>*>((*v)(s));
     if (in.U == in.V) fail(std::string(fn) + ": u and v must be different arrays");
-    in.options = forced_options(*in.solver, nargs, s, GetAny<double>((*omega)(s)), fn);
+    in.options = forced_options(*in.model, nargs, s, GetAny<double>((*omega)(s)), fn);
     in.u = vector_of<double>(in.U, fn, "u");
     in.v = vector_of<double>(in.V, fn, "v");
     in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
@@ -258,7 +258,7 @@ template <class Call, class H, class R>
 class ForcedOp : public OneOperator {
  public:
   ForcedOp()
-      : OneOperator(atype<R>(), atype<NbmHandle*>(), atype<KN<double>*>(), atype<H>(),
+      : OneOperator(atype<R>(), atype<ModelHandle*>(), atype<KN<double>*>(), atype<H>(),
                     atype<H>(), atype<double>(), atype<KN<double>*>(), atype<KN<double>*>()) {}
   E_F0* code(const basicAC_F0& args) const override {
     Expression e[7];
@@ -285,7 +285,7 @@ class ForcedOrbit : public ForcedCall<H> {
     if (nargs[6]) in.options.method = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) in.options.harmonics = static_cast<int>(GetAny<long>((*nargs[7])(s)));
     auto report = guarded(fn, [&] {
-      return nbm::forced_orbit(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
+      return nbm::forced_orbit(in.model->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
                                in.options);
     });
     return SetAny<double>(keep(in.h, std::move(report), in.U, in.V));
@@ -355,7 +355,7 @@ class ForcedResponse : public ForcedCall<H> {
            ": doublingAmplitude, doubled, doubledFile: only with doubling = true");
     const std::string file = nargs[13] ? *GetAny<string*>((*nargs[13])(s)) : std::string();
     nbm::ForcedResponse response = guarded(fn, [&] {
-      return nbm::forced_response(in.solver->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
+      return nbm::forced_response(in.model->problem(), in.F0, in.cosines, in.sines, in.u, in.v,
                                   in.options, r);
     });
     if (!file.empty()) guarded(fn, [&] { nbm::write_forced_response(response, file); });
@@ -413,23 +413,23 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
-const nbm::OrbitReport& forced_of(NbmHandle* h, const char* function) {
+const nbm::OrbitReport& forced_of(ModelHandle* h, const char* function) {
   const nbm::OrbitReport& o = orbit_of(h, function);
   if (o.omega == 0)
     fail(std::string(function) + ": the last orbit is not a forced orbit (nbmForcedOrbit)");
   return o;
 }
-double orbit_amplitude(NbmHandle* const& h) {
+double orbit_amplitude(ModelHandle* const& h) {
   return forced_of(h, "nbmOrbitAmplitude").amplitude;
 }
-long orbit_probe(NbmHandle* const& h, KN<double>* const& r) {
+long orbit_probe(ModelHandle* const& h, KN<double>* const& r) {
   const nbm::OrbitReport& o = forced_of(h, "nbmOrbitProbe");
   assign(r, std::vector<double>{static_cast<double>(o.probe), o.probe_min, o.probe_max,
                                 o.energy_max});
   return o.probe;
 }
 
-double continue_orbit(NbmHandle* const& h, KN<double>* const& u, KN<double>* const& v,
+double continue_orbit(ModelHandle* const& h, KN<double>* const& u, KN<double>* const& v,
                       const double& step) {
   const char* fn = "nbmContinueOrbit";
   const nbm::OrbitReport& last = orbit_of(h, fn);
@@ -443,7 +443,7 @@ double continue_orbit(NbmHandle* const& h, KN<double>* const& u, KN<double>* con
   return keep(h, std::move(report), u, v);
 }
 
-long orbit_state(NbmHandle* const& h, const double& t, KN<double>* const& u,
+long orbit_state(ModelHandle* const& h, const double& t, KN<double>* const& u,
                  KN<double>* const& v) {
   const char* fn = "nbmOrbitState";
   const nbm::OrbitReport& o = orbit_of(h, fn);
@@ -456,14 +456,14 @@ long orbit_state(NbmHandle* const& h, const double& t, KN<double>* const& u,
   return 0;
 }
 
-long orbit_multipliers(NbmHandle* const& h, KN<double>* const& re, KN<double>* const& im) {
+long orbit_multipliers(ModelHandle* const& h, KN<double>* const& re, KN<double>* const& im) {
   const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitMultipliers");
   assign(re, o.multipliers_re);
   assign(im, o.multipliers_im);
   return static_cast<long>(o.multipliers_re.size());
 }
 
-long orbit_residuals(NbmHandle* const& h, KN<double>* const& r) {
+long orbit_residuals(ModelHandle* const& h, KN<double>* const& r) {
   const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitResiduals");
   assign(r, std::vector<double>{o.periodicity_residual, o.complementarity_residual,
                                 o.trivial_residual, o.balance_residual, o.truncation,
@@ -471,18 +471,18 @@ long orbit_residuals(NbmHandle* const& h, KN<double>* const& r) {
   return 6;
 }
 
-long orbit_energies(NbmHandle* const& h, KN<double>* const& e) {
+long orbit_energies(ModelHandle* const& h, KN<double>* const& e) {
   assign(e, orbit_of(h, "nbmOrbitEnergies").energies);
   return 4;
 }
 
-double orbit_contact_time(NbmHandle* const& h) {
+double orbit_contact_time(ModelHandle* const& h) {
   return orbit_of(h, "nbmOrbitContactTime").contact_time;
 }
-long orbit_switches(NbmHandle* const& h) { return orbit_of(h, "nbmOrbitSwitches").switches; }
-long orbit_stable(NbmHandle* const& h) { return orbit_of(h, "nbmOrbitStable").stable; }
+long orbit_switches(ModelHandle* const& h) { return orbit_of(h, "nbmOrbitSwitches").switches; }
+long orbit_stable(ModelHandle* const& h) { return orbit_of(h, "nbmOrbitStable").stable; }
 
-long orbit_harmonics(NbmHandle* const& h, KNM<double>* const& C) {
+long orbit_harmonics(ModelHandle* const& h, KNM<double>* const& C) {
   const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitHarmonics");
   if (o.harmonics == 0)
     fail("nbmOrbitHarmonics: the last orbit was not computed by harmonic balance");
@@ -493,7 +493,7 @@ long orbit_harmonics(NbmHandle* const& h, KNM<double>* const& C) {
   return o.harmonics;
 }
 
-long orbit_summary(NbmHandle* const& h, string* const& file) {
+long orbit_summary(ModelHandle* const& h, string* const& file) {
   const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitSummary");
   std::cout << o.summary;
   if (file && !file->empty()) {
@@ -507,7 +507,7 @@ long orbit_summary(NbmHandle* const& h, string* const& file) {
 }  // namespace
 
 void load_orbit_functions() {
-  using H = NbmHandle*;
+  using H = ModelHandle*;
   using R = KN<double>*;
   Global.Add("nbmPeriodicOrbit", "(", new PeriodicOrbitOp);
   using A = KNM<double>*;  // harmonics as the columns of a real[int,int], or one real[int]

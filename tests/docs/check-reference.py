@@ -45,10 +45,15 @@ def plugin_names(repo):
         raise SystemExit("check-reference: no plugin/freefem/*.cpp under " + repo)
     for path in sources:
         text = strip_cpp_comments(read(path))
+        # Object-like macros (a list of named options shared by two calls):
+        # expanded in the name_param arrays below.
+        macros = {m.group(1): m.group(2).replace("\\\n", " ")
+                  for m in re.finditer(r"#define\s+(\w+)[ \t]+((?:[^\n]*\\\n)*[^\n]*)", text)}
         for m in re.finditer(r"(\w+)\s*(?:<[^>]*>)?\s*::\s*name_param\s*\[\s*\]\s*=\s*\{(.*?)\};",
                              text, re.S):
+            body = re.sub(r"\b(\w+)\b", lambda t: macros.get(t.group(1), t.group(1)), m.group(2))
             params.setdefault(m.group(1), []).extend(
-                re.findall(r'\{\s*"(\w+)"\s*,\s*&typeid', m.group(2)))
+                re.findall(r'\{\s*"(\w+)"\s*,\s*&typeid', body))
         last_type = None
         events = []
         for m in re.finditer(r'Global\.Add\(\s*"(\w+)"\s*,\s*"\("\s*,\s*new\s+([^;]*);', text):

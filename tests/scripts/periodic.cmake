@@ -63,7 +63,8 @@ nbm_bad_orbit_case(continue-first [[nbmContinueOrbit: needs the two last orbits 
 nbm_bad_orbit_case(continue-step [[nbmContinueOrbit: step: expected a finite step > 0]])
 nbm_bad_orbit_case(continue-harmonic-balance [[nbmContinueOrbit: continuation follows orbits computed by shooting]])
 nbm_bad_orbit_case(continue-load [[nbmContinueOrbit: the two orbits were computed on different problems, loads]])
-nbm_bad_orbit_case(unconstructed [[nbmPeriodicOrbit: the NBM object was not constructed]])
+nbm_bad_orbit_case(unconstructed [[nbmPeriodicOrbit: the model was not constructed]])
+nbm_bad_orbit_case(obstacle-model [[nbmPeriodicOrbit: the model holds its obstacle with a contact frame that follows the body \(obstacle=\)]])
 
 # Backbones from grazing (edp/plate-backbone.edp, method.md §6): with the
 # consistent mass the script computes the linear frequency of the plate's
@@ -93,7 +94,7 @@ nbm_bad_valid(backbone-valid ${NBM_BACKBONE_CASES} -case valid)
 function(nbm_bad_backbone_case name regex)
   nbm_bad_input_test(backbone-${name} ${regex} ${NBM_BACKBONE_CASES} -case ${name})
 endfunction()
-nbm_bad_backbone_case(unconstructed [[nbmBackbone: the NBM object was not constructed]])
+nbm_bad_backbone_case(unconstructed [[nbmBackbone: the model was not constructed]])
 nbm_bad_backbone_case(mode [[nbmBackbone: mode: 1000 out of range \[0, [0-9]+\)]])
 nbm_bad_backbone_case(mode-negative [[nbmBackbone: mode: -1 out of range]])
 nbm_bad_backbone_case(points [[nbmBackbone: points: expected >= 1, got 0]])
@@ -137,7 +138,7 @@ nbm_bad_orbit_case(forced-hbm-no-convergence [[nbmForcedOrbit: forced harmonic b
 nbm_bad_orbit_case(forced-damping-matrix [[nbmForcedOrbit: damping: non-zero on the normal component of contact node 0]])
 nbm_bad_orbit_case(forced-amplitude-autonomous [[nbmOrbitAmplitude: the last orbit is not a forced orbit]])
 nbm_bad_orbit_case(forced-continue [[nbmContinueOrbit: continuation follows autonomous orbits]])
-nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the NBM object was not constructed]])
+nbm_bad_orbit_case(forced-unconstructed [[nbmForcedOrbit: the model was not constructed]])
 nbm_bad_valid(orbit-valid-response ${NBM_ORBIT_CASES} -case valid-response)
 nbm_bad_orbit_case(response-parameter [[nbmForcedResponse: parameter: "force".*expected "omega" or "amplitude"]])
 nbm_bad_orbit_case(response-to [[nbmForcedResponse: to: the end of the parameter range is required]])

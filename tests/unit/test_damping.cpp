@@ -119,7 +119,7 @@ double error_at(const std::string& scheme, const std::string& mass, double dt, d
   nbm::Solver s = c.solver();
   std::vector<double> u = c.u0(), v(u.size(), 0.0), F(u.size(), 0.0);
   s.initialize(u, v, F);
-  const nbm::ContactProblem& p = s.problem();
+  const nbm::ContactProblem& p = s.model()->problem();
   const Vec u_start = p.to_internal(nbm_test::to_eigen(u));
   const Reduced r(p, scheme_mass(p, scheme), scheme == "moreau-jean");
   const int n = static_cast<int>(std::lround(T / dt));
@@ -175,14 +175,14 @@ TEST(ModalDamping, LogDecrementOfAFreeModeGivesTheRayleighRatio) {
   for (const int j : {0, 2}) {  // the first and third modes: zeta_j's two terms weigh differently
     Clamped probe("newmark", 1e-3, a_M, b_K);
     nbm::Solver s0 = probe.solver();
-    const nbm::ContactProblem& p0 = s0.problem();
+    const nbm::ContactProblem& p0 = s0.model()->problem();
     const Reduced r(p0, Mat(p0.M()), false);
     const double w = r.w(j), period = 2 * kPi / w;
     const double zeta = a_M / (2 * w) + b_K * w / 2;
 
     Clamped c("newmark", period / 400, a_M, b_K);
     nbm::Solver s = c.solver();
-    const nbm::ContactProblem& p = s.problem();
+    const nbm::ContactProblem& p = s.model()->problem();
     const Vec mode = r.P * r.Phi.col(j) * (0.01 / (r.P * r.Phi.col(j)).cwiseAbs().maxCoeff());
     const Vec mode_user = p.to_user(mode);
     std::vector<double> u = nbm_test::to_std(mode_user), v(u.size(), 0.0), F(u.size(), 0.0);

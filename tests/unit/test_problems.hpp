@@ -225,4 +225,18 @@ inline double total_energy(const Assembled& a, const Eigen::VectorXd& u, const E
   return 0.5 * v.dot(a.M * v) + 0.5 * u.dot(a.K * u) - a.F.dot(u);
 }
 
+/// The displacements of `steps` steps of `s` from u = u0 (every dof), v = 0
+/// under the constant load F, the initial state first.
+inline std::vector<std::vector<double>> displacements(nbm::Solver& s, const std::vector<double>& F,
+                                                      int steps, double u0 = 0) {
+  std::vector<double> u(F.size(), u0), v(F.size(), 0.0);
+  s.initialize(u, v, F);
+  std::vector<std::vector<double>> out{u};
+  for (int k = 0; k < steps; ++k) {
+    s.step(u, v, F);
+    out.push_back(u);
+  }
+  return out;
+}
+
 }  // namespace nbm_test

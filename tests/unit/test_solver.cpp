@@ -32,14 +32,7 @@ std::vector<StdVec> trajectory(const CooMatrix& M, const CooMatrix& K, const Std
                                const nbm::ContactDescription& c, const SolverOptions& o,
                                int steps, double h0 = 0.1) {
   Solver s(M, K, c, o);
-  StdVec u(M.rows, h0), v(M.rows, 0.0);
-  s.initialize(u, v, F);
-  std::vector<StdVec> out{u};
-  for (int k = 0; k < steps; ++k) {
-    s.step(u, v, F);
-    out.push_back(u);
-  }
-  return out;
+  return nbm_test::displacements(s, F, steps, h0);
 }
 
 void expect_same_trajectory(const std::vector<StdVec>& a, const std::vector<StdVec>& b,

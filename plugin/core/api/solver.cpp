@@ -5,12 +5,8 @@
 #include <string>
 #include <tuple>
 
+#include "api/model_data.hpp"
 #include "base/errors.hpp"
-#include "contact/contact_problem.hpp"
-#include "contact/damping.hpp"
-#include "contact/mass_redistribution.hpp"
-#include "linalg/sparse_input.hpp"
-#include "obstacle/rigid_obstacle.hpp"
 #include "time/central_difference_stepper.hpp"
 #include "time/following_frame_stepper.hpp"
 #include "time/massless_newmark_stepper.hpp"
@@ -19,8 +15,6 @@
 
 namespace nbm {
 namespace {
-
-std::vector<Index> to_index(const std::vector<long>& v) { return {v.begin(), v.end()}; }
 
 // Round-off of a penetration, relative to the displacement scale (as the
 // steppers' check of an initial state).
@@ -33,9 +27,8 @@ Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   return Eigen::Map<const Vector>(x.data(), n);
 }
 
-// Checks the options that do not depend on the matrices, once: the scheme,
-// the mass treatment and which parameters go with which.
-void check_options(const SolverOptions& options) {
+// Checks the scheme's options and how they go with the model's.
+void check_options(const SchemeOptions& options, const ModelOptions& model) {
   const std::string& scheme = options.scheme;
   if (scheme != "newmark" && scheme != "explicit" && scheme != "moreau-jean")
     throw InputError("scheme: \"" + scheme +
@@ -51,7 +44,7 @@ void check_options(const SolverOptions& options) {
   if (options.restitution.has_value() && scheme != "moreau-jean")
     throw InputError("restitution: given with scheme \"" + scheme +
                      "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
-  if (options.obstacle && (options.mass != "redistributed" || scheme != "newmark"))
+  if (model.obstacle && scheme != "newmark")
     throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
                      "contact frame follows the body only with massless contact nodes)");
   if (options.energy) {
@@ -59,130 +52,71 @@ void check_options(const SolverOptions& options) {
     if (energy != "bounded" && energy != "monotone" && energy != "none")
       throw InputError("energy: \"" + energy +
                        "\", expected \"bounded\", \"monotone\" or \"none\"");
-    const bool damped = options.rayleigh_mass != 0 || options.rayleigh_stiffness != 0 ||
-                        options.damping.rows != 0;
     if (energy != "none" &&
-        (scheme != "newmark" || options.obstacle || options.beta.value_or(0.25) != 0.25 ||
-         options.gamma.value_or(0.5) != 0.5 || options.rayleigh_stiffness != 0 ||
-         (options.mass == "consistent" && damped)))
+        (scheme != "newmark" || model.obstacle || options.beta.value_or(0.25) != 0.25 ||
+         options.gamma.value_or(0.5) != 0.5 || model.rayleigh_stiffness != 0 ||
+         (model.mass == "consistent" && model.damped())))
       throw InputError("energy: given without the energy-stable step it controls, which needs "
                        "scheme \"newmark\" with beta = 1/4 and gamma = 1/2, no rayleighK and "
                        "no obstacle, and with mass = \"consistent\" no damping at all "
                        "(method.md §5.1, §5.3)");
   }
-  if (options.mass == "redistributed") {
-    if (scheme != "newmark")
-      throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
-                       "boundary has no explicit or Moreau-Jean variant)");
-  } else if (options.mass != "consistent") {
-    throw InputError("mass: \"" + options.mass +
-                     "\", expected \"consistent\" or \"redistributed\"");
-  } else if (!options.positions.empty()) {
-    throw InputError("positions: given with mass = \"consistent\"; they are used only by "
-                     "mass = \"redistributed\"");
-  }
-}
-
-TimeLaw time_law(const TimeLawDescription& d, const std::string& who) {
-  if (d.harmonics.size() % 3 != 0)
-    throw InputError(who + ": " + std::to_string(d.harmonics.size()) +
-                     " harmonic coefficients, expected triples (omega, cos, sin)");
-  TimeLaw law;
-  law.offset = d.offset, law.rate = d.rate, law.accel = d.accel;
-  for (std::size_t j = 0; j < d.harmonics.size(); j += 3)
-    law.harmonics.push_back({d.harmonics[j], d.harmonics[j + 1], d.harmonics[j + 2]});
-  return law;
-}
-
-Vector vector_of(const std::vector<double>& x) { return Eigen::Map<const Vector>(x.data(), x.size()); }
-
-// The core's obstacle for the option `obstacle` (method.md §10).
-std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d) {
-  Side side = Side::kOutside;
-  if (d.side == "inside")
-    side = Side::kInside;
-  else if (d.side != "outside")
-    throw InputError("obstacle side: \"" + d.side + "\", expected \"outside\" or \"inside\"");
-  const TimeLaw move = time_law(d.translation, "obstacle translation");
-  const TimeLaw grow = time_law(d.radius_change, "obstacle radius change");
-  if (d.kind == "plane") {
-    if (!grow.constant() || grow.offset != 0)
-      throw InputError("obstacle radius change: given for a plane, which has no radius");
-    return make_plane(vector_of(d.point), vector_of(d.axis), move);
-  }
-  if (d.kind == "circle" || d.kind == "sphere") {
-    const std::size_t dim = d.kind == "circle" ? 2 : 3;
-    if (d.point.size() != dim)
-      throw InputError("obstacle point: " + std::to_string(d.point.size()) + " coordinates, a " +
-                       d.kind + " expects " + std::to_string(dim));
-    return make_ball(vector_of(d.point), d.radius, side, vector_of(d.direction), move, grow);
-  }
-  if (d.kind == "cylinder")
-    return make_cylinder(vector_of(d.point), vector_of(d.axis), d.radius, side,
-                         vector_of(d.direction), move, grow);
-  throw InputError("obstacle kind: \"" + d.kind +
-                   "\", expected \"plane\", \"circle\", \"sphere\" or \"cylinder\"");
-}
-
-// The node coordinates of mass = "redistributed", one row per dof.
-Matrix positions_of(const SolverOptions& options, Index n) {
-  const long n_pos = static_cast<long>(options.positions.size());
-  if (n_pos == 0 || n_pos % n != 0 || n_pos / n > 3)
-    throw InputError("positions: size " + std::to_string(n_pos) +
-                     ", expected 1, 2 or 3 coordinates per dof (n_dofs = " + std::to_string(n) +
-                     ") with mass = \"redistributed\"");
-  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-      options.positions.data(), n, n_pos / n);
+  if (model.mass == "redistributed" && scheme != "newmark")
+    throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
+                     "boundary has no explicit or Moreau-Jean variant)");
 }
 
 // What the energy-stable step bounds (option energy, checked): "bounded" by
 // default where the step exists (method.md §5.1, §5.3).
-EnergyControl energy_control(const SolverOptions& options) {
+EnergyControl energy_control(const SchemeOptions& options) {
   const std::string energy = options.energy.value_or("bounded");
   return energy == "monotone" ? EnergyControl::kMonotone
          : energy == "none"   ? EnergyControl::kNone
                               : EnergyControl::kBounded;
 }
 
-// The time scheme of the options on a problem (options checked), with the
-// damping in the problem's internal coordinates.
-std::unique_ptr<Stepper> make_stepper(const SolverOptions& options, const ContactProblem& problem,
-                                      const Damping& damping, double& critical_dt) {
+// The time scheme of the options on a model (options checked).
+std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model::Data& model,
+                                      double& critical_dt) {
   critical_dt = 0;
+  const ContactProblem& problem = *model.problem;
   const NewmarkParameters defaults;
   const double beta = options.beta.value_or(defaults.beta);
   const double gamma = options.gamma.value_or(defaults.gamma);
+  if (model.obstacle) {
+    FollowingFrameOptions frame;
+    frame.beta = beta;
+    frame.gamma = gamma;
+    return std::make_unique<FollowingFrameStepper>(problem, model.M_user, model.positions,
+                                                   model.obstacle, options.dt, frame,
+                                                   model.damping_user);
+  }
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma, damping,
-                                                    ContactColumns::kAuto, energy_control(options));
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma,
+                                                    model.damping, ContactColumns::kAuto,
+                                                    energy_control(options));
   if (options.scheme == "newmark") {
     NewmarkParameters parameters;
     parameters.beta = beta;
     parameters.gamma = gamma;
     parameters.energy = energy_control(options);
-    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, damping);
+    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, model.damping);
   }
   if (options.scheme == "explicit") {
-    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, damping);
+    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, model.damping);
     critical_dt = cd->critical_dt();
     return cd;
   }
   return std::make_unique<MoreauJeanStepper>(problem, options.dt,
-                                             options.restitution.value_or(0.0), damping);
+                                             options.restitution.value_or(0.0), model.damping);
 }
 
 }  // namespace
 
 struct Solver::Impl {
-  SolverOptions options;
-  std::vector<long> fixed;
-  // The user's matrices as given: a new contact set (replace_contacts) is
-  // built on them, so that a solver constructed with it from the same
-  // matrices restarts the run bit for bit (internal ones rotate back only to
-  // round-off).
-  SparseMatrix M_user, K_user;
-  Damping damping_user;  // the damping with its matrix in user coordinates
-  std::unique_ptr<ContactProblem> problem;
+  SolverOptions options;  // the model's and the scheme's
+  std::shared_ptr<const Model> model;
+  const ContactProblem* problem = nullptr;  // the model's
   std::unique_ptr<Stepper> stepper;
   double critical_dt = 0;
   long steps = 0, fallbacks = 0;
@@ -197,74 +131,30 @@ struct Solver::Impl {
     return {F, obstacle, F_rate.size() ? &F_rate : nullptr, F_accel.size() ? &F_accel : nullptr};
   }
 
-  /// Builds the problem and the stepper for a contact description.
-  void build(const SparseMatrix& M, const SparseMatrix& K, const ContactDescription& contact) {
-    const Index n = K.rows();
-    if (contact.gaps.empty())
-      throw InputError("contact set is empty: expected at least one contact node (gaps)");
-    const std::vector<Index> fixed_dofs(fixed.begin(), fixed.end());
-    ContactSet contacts(n, to_index(contact.dofs), contact.normals,
-                        Eigen::Map<const Vector>(contact.gaps.data(), contact.gaps.size()),
-                        fixed_dofs);
-    if (options.obstacle) {
-      build_following(M, K, contacts);
-      return;
-    }
-    std::unique_ptr<ContactProblem> p;
-    if (options.mass == "redistributed") {
-      const Matrix X = positions_of(options, n);
-      p = std::make_unique<ContactProblem>(M, K, std::move(contacts), fixed_dofs, &X);
-    } else {
-      p = std::make_unique<ContactProblem>(M, K, std::move(contacts), fixed_dofs);
-    }
-    Damping damping = damping_user;
-    if (damping.has_matrix()) damping.C_user = p->to_internal(damping_user.C_user);
-    std::unique_ptr<Stepper> s = make_stepper(options, *p, damping, critical_dt);
-    stepper = std::move(s);  // the old stepper refers to the old problem: first
-    problem = std::move(p);
-    obstacle = Obstacle::at_rest(problem->gaps());
-  }
-
-  /// The contact nodes of `contacts` (checked as given) in the user's axes,
-  /// with the option `obstacle` followed by the contact frame (method.md §10).
-  void build_following(const SparseMatrix& M, const SparseMatrix& K, const ContactSet& contacts) {
-    const Index n = K.rows();
-    const std::vector<Index> fixed_dofs(fixed.begin(), fixed.end());
-    std::vector<Index> dofs;
-    for (Index k = 0; k < contacts.size(); ++k)
-      for (int j = 0; j < contacts.dim(); ++j) dofs.push_back(contacts.dof(k, j));
-    auto p = std::make_unique<ContactProblem>(
-        M, K, ContactSet::in_user_axes(n, std::move(dofs), contacts.dim(), fixed_dofs), fixed_dofs);
-    const Matrix X = positions_of(options, n);
-    if (X.cols() != contacts.dim())
-      throw InputError("positions: " + std::to_string(X.cols()) + " coordinates per dof, expected " +
-                       std::to_string(contacts.dim()) + " (the dofs per contact node)");
-    FollowingFrameOptions frame;
-    const NewmarkParameters defaults;
-    frame.beta = options.beta.value_or(defaults.beta);
-    frame.gamma = options.gamma.value_or(defaults.gamma);
-    std::unique_ptr<Stepper> s = std::make_unique<FollowingFrameStepper>(
-        *p, M, X, make_obstacle(*options.obstacle), options.dt, frame, damping_user);
-    critical_dt = 0;
-    stepper = std::move(s);
-    problem = std::move(p);
+  /// Integrates `m` from now on: its stepper (options checked).
+  void build(std::shared_ptr<const Model> m) {
+    std::unique_ptr<Stepper> s = make_stepper(options, m->data(), critical_dt);
+    stepper = std::move(s);  // the old stepper refers to the old model: first
+    model = std::move(m);
+    problem = &model->problem();
     obstacle = Obstacle::at_rest(problem->gaps());
   }
 
   /// What replace_contacts() puts back if the new description fails.
   struct Saved {
-    std::unique_ptr<ContactProblem> problem;
+    std::shared_ptr<const Model> model;
     std::unique_ptr<Stepper> stepper;
     Obstacle obstacle;
     double critical_dt;
     std::vector<double> u_user, v_user, a_user;
   };
   Saved save() {
-    return {std::move(problem), std::move(stepper), obstacle, critical_dt, u_user, v_user, a_user};
+    return {model, std::move(stepper), obstacle, critical_dt, u_user, v_user, a_user};
   }
   void put_back(Saved& s) {
     stepper = std::move(s.stepper);
-    problem = std::move(s.problem);
+    model = std::move(s.model);
+    problem = &model->problem();
     obstacle = std::move(s.obstacle);
     critical_dt = s.critical_dt;
     u_user = std::move(s.u_user);
@@ -325,55 +215,32 @@ struct Solver::Impl {
   }
 };
 
-void check_obstacle(const ObstacleDescription& obstacle) { make_obstacle(obstacle); }
-
-double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
-                         double t) {
-  const auto o = make_obstacle(obstacle);
-  if (static_cast<int>(x.size()) != o->dim())
-    throw InputError("x: " + std::to_string(x.size()) + " coordinates, expected " +
-                     std::to_string(o->dim()) + " (the obstacle's dimension)");
-  return o->at(x.data(), t).phi;
+Solver::Solver(std::shared_ptr<const Model> model, const SchemeOptions& options)
+    : impl_(std::make_unique<Impl>()) {
+  if (!model) throw InputError("model: none given");
+  check_options(options, model->options());
+  static_cast<ModelOptions&>(impl_->options) = model->options();
+  static_cast<SchemeOptions&>(impl_->options) = options;
+  impl_->build(std::move(model));
 }
 
 Solver::Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
                const SolverOptions& options)
-    : impl_(std::make_unique<Impl>()) {
-  check_options(options);
-  impl_->options = options;
-  const SparseMatrix Ks = to_sparse(K, "K");
-  const SparseMatrix Ms = to_sparse(M, "M");
-  if (Ms.rows() != Ks.rows() || Ms.cols() != Ks.cols())
-    throw InputError("M: size " + std::to_string(Ms.rows()) + "x" + std::to_string(Ms.cols()) +
-                     " differs from the size of K, " + std::to_string(Ks.rows()) + "x" +
-                     std::to_string(Ks.cols()));
-  // Range errors of `fixed` are reported by ContactSet.
-  std::vector<Index> fixed = to_index(options.fixed);
-  std::sort(fixed.begin(), fixed.end());
-  fixed.erase(std::unique(fixed.begin(), fixed.end()), fixed.end());
-  impl_->fixed.assign(fixed.begin(), fixed.end());
-  Damping& damping = impl_->damping_user;
-  damping.a_M = options.rayleigh_mass;
-  damping.b_K = options.rayleigh_stiffness;
-  if (options.damping.rows != 0 || options.damping.cols != 0 || !options.damping.value.empty())
-    damping.C_user = to_sparse(options.damping, "damping matrix");
-  check_damping(damping, Ks.rows());
-  impl_->build(Ms, Ks, contact);
-  impl_->M_user = Ms;
-  impl_->K_user = Ks;
-}
+    : Solver((check_options(options, options),
+              std::make_shared<const Model>(M, K, contact, options)),
+             options) {}
 
 Solver::~Solver() = default;
 
 long Solver::n_dofs() const { return impl_->problem->n_dofs(); }
 long Solver::n_contact() const { return impl_->problem->n_contact(); }
 const SolverOptions& Solver::options() const { return impl_->options; }
-std::vector<long> Solver::fixed_dofs() const { return impl_->fixed; }
+std::vector<long> Solver::fixed_dofs() const { return impl_->model->fixed_dofs(); }
+const std::shared_ptr<const Model>& Solver::model() const { return impl_->model; }
 bool Solver::initialized() const { return impl_->stepper->initialized(); }
 double Solver::time() const { return impl_->stepper->time(); }
 long Solver::steps() const { return impl_->steps; }
 long Solver::fallbacks() const { return impl_->fallbacks; }
-const ContactProblem& Solver::problem() const { return *impl_->problem; }
 double Solver::critical_dt() const { return impl_->critical_dt; }
 
 void Solver::set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
@@ -448,11 +315,11 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
   impl_->steps = impl_->fallbacks = 0;
   // u, v stay as given (fixed dofs zeroed): the internal state is their
   // image, exactly what the uninterrupted run holds after publish().
-  for (long f : impl_->fixed) u[f] = v[f] = 0.0;
+  for (long f : impl_->model->fixed_dofs()) u[f] = v[f] = 0.0;
   impl_->u_user = u;
   impl_->v_user = v;
   impl_->a_user = a;
-  for (long f : impl_->fixed) impl_->a_user[f] = 0.0;
+  for (long f : impl_->model->fixed_dofs()) impl_->a_user[f] = 0.0;
 }
 
 StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
@@ -487,7 +354,7 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
   Impl::Saved saved = impl_->save();  // kept until the new description has worked
   std::vector<double> uu = u, vv = v;
   try {
-    impl_->build(impl_->M_user, impl_->K_user, contact);
+    impl_->build(saved.model->with_contacts(contact));
     impl_->start(uu, vv, F, t, true);
     impl_->stepper->carry_over(*saved.stepper);
     if (impl_->options.scheme == "moreau-jean") {

@@ -1,5 +1,5 @@
-// nbm::Solver: the NBM time integrator on the user's dofs. This header is
-// free of Eigen and FreeFEM so that the FreeFEM binding (whose headers do not
+// nbm::Solver: the NBM time integrator of a Model (api/model.hpp) on the
+// user's dofs. This header is free of Eigen and FreeFEM so that the FreeFEM binding (whose headers do not
 // mix with Eigen) and other front ends can include it.
 #pragma once
 
@@ -8,51 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "linalg/coo_matrix.hpp"
+#include "api/model.hpp"
 
 namespace nbm {
 
-class ContactProblem;
-
-/// A function of time, w(t) = offset + rate t + accel t^2 / 2
-/// + sum_j (c_j cos(omega_j t) + s_j sin(omega_j t)); `harmonics` holds the
-/// triples (omega_j, c_j, s_j).
-struct TimeLawDescription {
-  double offset = 0, rate = 0, accel = 0;
-  std::vector<double> harmonics;
-};
-
-/// A rigid obstacle held exactly: each step enforces phi(x + u, t) >= 0 at
-/// every contact node with the normal taken where the node is (method.md
-/// §10). Needs mass "redistributed" (every component of the contact nodes
-/// massless) and scheme "newmark".
-struct ObstacleDescription {
-  /// "plane", "circle" (2D), "sphere" (3D) or "cylinder" (3D).
-  std::string kind;
-  /// A point of the plane, the centre, or a point of the cylinder's axis.
-  std::vector<double> point;
-  /// The plane's normal (out of the obstacle, towards the body), or the
-  /// cylinder's axis; normalised.
-  std::vector<double> axis;
-  double radius = 0;  ///< circle, sphere, cylinder
-  /// "outside" (the body outside the round obstacle) or "inside" (a casing).
-  std::string side = "outside";
-  /// Motion: a translation by translation(t) along `direction` (for a plane:
-  /// along its normal, `direction` not used), and for round obstacles a
-  /// change of radius radius_change(t).
-  std::vector<double> direction;
-  TimeLawDescription translation, radius_change;
-};
-
-/// Throws InputError naming the field if `obstacle` does not describe an
-/// obstacle (unknown kind or side, wrong sizes, zero axis, non-finite or
-/// negative radius, malformed time laws).
-void check_obstacle(const ObstacleDescription& obstacle);
-/// phi(x, t) of the obstacle: the signed distance of the point x at time t.
-double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
-                         double t);
-
-struct SolverOptions {
+/// How the model is advanced in time: the scheme and its parameters.
+struct SchemeOptions {
   double dt = 0;
   /// "newmark" (implicit NBM), "explicit" (central differences NBM) or
   /// "moreau-jean" (the Newton impact law peer, contact dofs not slaved).
@@ -60,50 +21,19 @@ struct SolverOptions {
   /// Newmark parameters, scheme "newmark" only (default 1/4, 1/2: average
   /// acceleration); setting them with scheme "explicit" is an error.
   std::optional<double> beta, gamma;
-  /// Dirichlet dofs (held at zero; any order, repeats allowed). They are the
-  /// only Dirichlet conditions the core knows: their rows and columns of M
-  /// and K are ignored. A front end translates its own conventions into this
-  /// list (the FreeFEM binding adds the dofs of on()'s tgv penalty,
-  /// plugin/freefem/dirichlet.hpp); a huge diagonal on a dof not listed here
-  /// is just a stiff (or heavy) entry.
-  std::vector<long> fixed;
-  /// "consistent" (the paper's NBM: contact nodes keep their mass) or
-  /// "redistributed" (massless boundary, method.md §4: energy conserving;
-  /// implicit scheme only). Redistribution needs `positions`: for every dof
-  /// the d coordinates of its node, dof-major (size n_dofs * d, d = 1..3).
-  std::string mass = "consistent";
-  std::vector<double> positions;
-  /// What the energy-stable step of mass "redistributed" bounds (method.md
-  /// §5.1): "bounded" (the default: the energy never exceeds its start plus
-  /// the work done on the body; what touchdowns lose a later lift-off may
-  /// return) or "monotone" (no step raises it). Needs the step: beta = 1/4,
-  /// gamma = 1/2, rayleigh_stiffness = 0 and no obstacle.
+  /// What the energy-stable step bounds (method.md §5.1, §5.3): "bounded"
+  /// (the default: the energy never exceeds its start plus the work done on
+  /// the body; what touchdowns lose a later lift-off may return), "monotone"
+  /// (no step raises it) or "none" (the plain step). Needs scheme "newmark"
+  /// with beta = 1/4, gamma = 1/2, no rayleigh_stiffness and no obstacle, and
+  /// with mass "consistent" no damping at all.
   std::optional<std::string> energy;
   /// Restitution coefficient of scheme "moreau-jean", in [0, 1] (default 0).
   std::optional<double> restitution;
-  /// Viscous damping (method.md §9), C = rayleigh_mass M + rayleigh_stiffness K
-  /// + damping: Rayleigh coefficients (finite, >= 0; M the scheme's mass:
-  /// redistributed with mass "redistributed", lumped with scheme
-  /// "explicit") and a matrix assembled like M and K (n_dofs x n_dofs,
-  /// symmetric, nonnegative diagonal; rows = 0: none). Scheme "explicit"
-  /// takes only rayleigh_mass; with mass "redistributed" the matrix must not
-  /// couple the contact dofs.
-  double rayleigh_mass = 0, rayleigh_stiffness = 0;
-  CooMatrix damping;
-  /// The obstacle held exactly with a contact frame that follows the body
-  /// (method.md §10); the contact description then gives only the contact
-  /// nodes (its normals and gaps are checked but not used: the obstacle
-  /// replaces them).
-  std::optional<ObstacleDescription> obstacle;
 };
 
-/// Contact nodes: node k owns dofs[k*d .. k*d+d-1] with normal components
-/// normals[k*d ..] and gap gaps[k] (method.md §2, §7).
-struct ContactDescription {
-  std::vector<long> dofs;
-  std::vector<double> normals;
-  std::vector<double> gaps;
-};
+/// The options of the shorthand constructor: the model's and the scheme's.
+struct SolverOptions : ModelOptions, SchemeOptions {};
 
 struct StepInfo {
   int active_set_iterations = 0;
@@ -115,8 +45,11 @@ struct StepInfo {
 
 class Solver {
  public:
-  /// Validates everything and factors what is needed; throws InputError or
+  /// The time integrator of `model`: validates the scheme's options against
+  /// the model and factors what the scheme needs; throws InputError or
   /// NumericalError (errors.hpp) with a message naming the faulty argument.
+  Solver(std::shared_ptr<const Model> model, const SchemeOptions& options);
+  /// Shorthand: the integrator of a model of its own.
   Solver(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
          const SolverOptions& options);
   ~Solver();
@@ -125,9 +58,13 @@ class Solver {
 
   long n_dofs() const;
   long n_contact() const;
+  /// The model's options and the scheme's.
   const SolverOptions& options() const;
   /// Fixed dofs: the `fixed` option, sorted, without repeats.
   std::vector<long> fixed_dofs() const;
+  /// The model integrated (after replace_contacts(), the model with the new
+  /// contact description).
+  const std::shared_ptr<const Model>& model() const;
 
   /// The rigid obstacle from the next initialize(), step() or restart() on
   /// (method.md §8): per contact node the gap along its normal (fixed at
@@ -182,8 +119,6 @@ class Solver {
   double time() const;
   long steps() const;
   long fallbacks() const;
-  /// The contact problem in internal coordinates (periodic-orbit solvers).
-  const ContactProblem& problem() const;
   /// Critical time step of the explicit scheme (0 for the implicit one).
   double critical_dt() const;
 

@@ -20,12 +20,18 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
                      " interior dofs; backbones use dense matrices and accept at most " +
                      std::to_string(periodic_max_dense_dofs) + " (use a coarser mesh)");
   check_amplitude_probe(problem, options.probe);
-  OrbitModel model(problem);
-  model.F = problem.to_internal(FF);
-  model.full = std::make_unique<ReducedField>(ReducedField::from(problem, model.F));
-  const ReducedField& field = model.field();
+  auto model = std::make_shared<OrbitModel>(problem);
+  model->F = problem.to_internal(FF);
+  model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
+  const ReducedField& field = model->field();
   const Backbone b = backbone(field, mode, options);
   const ExactFlow flow(field);
+  // The backbone's shooting conditions (backbone.cpp), which continue_orbit
+  // keeps along the family.
+  model->shooting = true;
+  model->conditions.probe = b.grazing.probe;
+  model->conditions.half_period = options.half_period;
+  model->conditions.max_iterations = options.max_iterations;
 
   BackboneReport r;
   r.linear_omega = b.grazing.omega;
@@ -33,7 +39,7 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   r.grazing_contact = b.grazing.contact;
   r.stop_reason = b.stop_reason;
   for (const BackbonePoint& p : b.points) {
-    const OrbitSamples samples = sample_orbit(model, flow, p.orbit);
+    const OrbitSamples samples = sample_orbit(*model, flow, p.orbit);
     if (r.points.empty()) r.probe = amplitude_probe(problem, samples, options.probe);
     BackbonePointReport q;
     q.probe_min = samples.lo(r.probe), q.probe_max = samples.hi(r.probe);
@@ -71,6 +77,13 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
     << " of the period), " << last.switches << " switches\n"
     << "stopped: " << r.stop_reason << "\n";
   r.summary = s.str();
+  std::ostringstream method;
+  method << "method pseudo-arclength continuation from grazing along the backbone of mode "
+         << mode << " (shooting, " << (options.half_period ? "half period" : "full period")
+         << ", exact flow)\n";
+  const std::size_t n = b.points.size();
+  if (n > 1) r.previous = describe(model, b.points[n - 2].orbit, OrbitReport{}, method.str());
+  r.last = describe(std::move(model), b.points[n - 1].orbit, OrbitReport{}, method.str());
   return r;
 }
 

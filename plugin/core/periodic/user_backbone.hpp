@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "periodic/periodic_defaults.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace nbm {
 
@@ -68,6 +69,11 @@ struct BackboneReport {
   std::vector<BackbonePointReport> points;
   std::string stop_reason;
   std::string summary;
+  /// The last orbit of the backbone and the one before (no model when the
+  /// backbone has one orbit only), as periodic_orbit reports them: their
+  /// states (orbit_states) and their family (continue_orbit goes on along
+  /// the backbone from them).
+  OrbitReport last, previous;
 };
 
 /// The backbone of mode `mode` (0: the lowest; modes of the system with

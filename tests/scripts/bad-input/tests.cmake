@@ -32,6 +32,15 @@ nbm_bad_valid(valid-tgv ${NBM_BAD_DIR}/cases.edp -case valid-tgv)
 nbm_bad_valid(plane-valid-newmark ${NBM_BAD_DIR}/plane.edp -case valid-newmark)
 nbm_bad_valid(plane-valid-explicit ${NBM_BAD_DIR}/plane.edp -case valid-explicit)
 
+nbm_bad_valid(valid-model ${NBM_BAD_DIR}/cases.edp -case valid-model)
+
+# ---- the model and its integrators ----
+nbm_bad_case(model-mass [=[NBMModel: mass: "lumped", expected "consistent" or "redistributed"]=])
+nbm_bad_case(model-unconstructed [=[NBM: the model was not constructed \(declare it as NBMModel]=])
+nbm_bad_case(model-orbit-unconstructed [=[nbmPeriodicOrbit: the model was not constructed]=])
+nbm_bad_case(model-no-dt [=[NBM: the time step dt=\.\.\. is required]=])
+nbm_bad_case(model-scheme [=[NBM: mass: "redistributed" needs scheme "newmark"]=])
+
 # ---- construction: matrices ----
 nbm_bad_case(m-k-size [=[NBM: M: size 21x21 differs from the size of K, 11x11]=])
 nbm_bad_case(k-nonsymmetric [=[NBM: K: not symmetric at \([0-9]+, [0-9]+\). expected a symmetric matrix]=])

@@ -1,0 +1,186 @@
+#include "api/model.hpp"
+
+#include <algorithm>
+#include <string>
+
+#include "api/model_data.hpp"
+#include "base/errors.hpp"
+#include "linalg/sparse_input.hpp"
+
+namespace nbm {
+namespace {
+
+std::vector<Index> to_index(const std::vector<long>& v) { return {v.begin(), v.end()}; }
+
+Vector vector_of(const std::vector<double>& x) { return Eigen::Map<const Vector>(x.data(), x.size()); }
+
+// Checks the options that concern the model alone: the mass treatment and
+// what goes with it.
+void check_options(const ModelOptions& options) {
+  if (options.mass == "redistributed") return;
+  if (options.mass != "consistent")
+    throw InputError("mass: \"" + options.mass + "\", expected \"consistent\" or \"redistributed\"");
+  if (!options.positions.empty())
+    throw InputError("positions: given with mass = \"consistent\"; they are used only by "
+                     "mass = \"redistributed\"");
+  if (options.obstacle)
+    throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
+                     "contact frame follows the body only with massless contact nodes)");
+}
+
+TimeLaw time_law(const TimeLawDescription& d, const std::string& who) {
+  if (d.harmonics.size() % 3 != 0)
+    throw InputError(who + ": " + std::to_string(d.harmonics.size()) +
+                     " harmonic coefficients, expected triples (omega, cos, sin)");
+  TimeLaw law;
+  law.offset = d.offset, law.rate = d.rate, law.accel = d.accel;
+  for (std::size_t j = 0; j < d.harmonics.size(); j += 3)
+    law.harmonics.push_back({d.harmonics[j], d.harmonics[j + 1], d.harmonics[j + 2]});
+  return law;
+}
+
+// The core's obstacle for the option `obstacle` (method.md §10).
+std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d) {
+  Side side = Side::kOutside;
+  if (d.side == "inside")
+    side = Side::kInside;
+  else if (d.side != "outside")
+    throw InputError("obstacle side: \"" + d.side + "\", expected \"outside\" or \"inside\"");
+  const TimeLaw move = time_law(d.translation, "obstacle translation");
+  const TimeLaw grow = time_law(d.radius_change, "obstacle radius change");
+  if (d.kind == "plane") {
+    if (!grow.constant() || grow.offset != 0)
+      throw InputError("obstacle radius change: given for a plane, which has no radius");
+    return make_plane(vector_of(d.point), vector_of(d.axis), move);
+  }
+  if (d.kind == "circle" || d.kind == "sphere") {
+    const std::size_t dim = d.kind == "circle" ? 2 : 3;
+    if (d.point.size() != dim)
+      throw InputError("obstacle point: " + std::to_string(d.point.size()) + " coordinates, a " +
+                       d.kind + " expects " + std::to_string(dim));
+    return make_ball(vector_of(d.point), d.radius, side, vector_of(d.direction), move, grow);
+  }
+  if (d.kind == "cylinder")
+    return make_cylinder(vector_of(d.point), vector_of(d.axis), d.radius, side,
+                         vector_of(d.direction), move, grow);
+  throw InputError("obstacle kind: \"" + d.kind +
+                   "\", expected \"plane\", \"circle\", \"sphere\" or \"cylinder\"");
+}
+
+// The node coordinates of mass = "redistributed", one row per dof.
+Matrix positions_of(const ModelOptions& options, Index n) {
+  const long n_pos = static_cast<long>(options.positions.size());
+  if (n_pos == 0 || n_pos % n != 0 || n_pos / n > 3)
+    throw InputError("positions: size " + std::to_string(n_pos) +
+                     ", expected 1, 2 or 3 coordinates per dof (n_dofs = " + std::to_string(n) +
+                     ") with mass = \"redistributed\"");
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      options.positions.data(), n, n_pos / n);
+}
+
+// The contact problem of `contact` on the model's matrices, fixed dofs,
+// positions and obstacle (data complete but for the problem).
+std::unique_ptr<ContactProblem> contact_problem(const Model::Data& data,
+                                                const ContactDescription& contact) {
+  const Index n = data.K_user.rows();
+  if (contact.gaps.empty())
+    throw InputError("contact set is empty: expected at least one contact node (gaps)");
+  const std::vector<Index> fixed = to_index(data.fixed);
+  ContactSet contacts(n, to_index(contact.dofs), contact.normals, vector_of(contact.gaps), fixed);
+  if (data.obstacle) {
+    // The contact nodes (checked as given) in the user's axes: the contact
+    // frame follows the body (method.md §10).
+    if (data.positions.cols() != contacts.dim())
+      throw InputError("positions: " + std::to_string(data.positions.cols()) +
+                       " coordinates per dof, expected " + std::to_string(contacts.dim()) +
+                       " (the dofs per contact node)");
+    std::vector<Index> dofs;
+    for (Index k = 0; k < contacts.size(); ++k)
+      for (int j = 0; j < contacts.dim(); ++j) dofs.push_back(contacts.dof(k, j));
+    return std::make_unique<ContactProblem>(
+        data.M_user, data.K_user, ContactSet::in_user_axes(n, std::move(dofs), contacts.dim(), fixed),
+        fixed);
+  }
+  if (data.positions.size() != 0)
+    return std::make_unique<ContactProblem>(data.M_user, data.K_user, std::move(contacts), fixed,
+                                            &data.positions);
+  return std::make_unique<ContactProblem>(data.M_user, data.K_user, std::move(contacts), fixed);
+}
+
+// Completes `data` with the problem of `contact` and the damping in its
+// coordinates.
+void build_problem(Model::Data& data, const ContactDescription& contact) {
+  data.problem = contact_problem(data, contact);
+  data.damping = data.damping_user;
+  if (data.damping.has_matrix() && !data.obstacle)
+    data.damping.C_user = data.problem->to_internal(data.damping_user.C_user);
+}
+
+}  // namespace
+
+void check_obstacle(const ObstacleDescription& obstacle) { make_obstacle(obstacle); }
+
+double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
+                         double t) {
+  const auto o = make_obstacle(obstacle);
+  if (static_cast<int>(x.size()) != o->dim())
+    throw InputError("x: " + std::to_string(x.size()) + " coordinates, expected " +
+                     std::to_string(o->dim()) + " (the obstacle's dimension)");
+  return o->at(x.data(), t).phi;
+}
+
+Model::Model(const CooMatrix& M, const CooMatrix& K, const ContactDescription& contact,
+             const ModelOptions& options)
+    : data_(std::make_unique<Data>()) {
+  check_options(options);
+  Data& d = *data_;
+  d.options = options;
+  d.K_user = to_sparse(K, "K");
+  d.M_user = to_sparse(M, "M");
+  if (d.M_user.rows() != d.K_user.rows() || d.M_user.cols() != d.K_user.cols())
+    throw InputError("M: size " + std::to_string(d.M_user.rows()) + "x" +
+                     std::to_string(d.M_user.cols()) + " differs from the size of K, " +
+                     std::to_string(d.K_user.rows()) + "x" + std::to_string(d.K_user.cols()));
+  // Range errors of `fixed` are reported by ContactSet.
+  d.fixed = options.fixed;
+  std::sort(d.fixed.begin(), d.fixed.end());
+  d.fixed.erase(std::unique(d.fixed.begin(), d.fixed.end()), d.fixed.end());
+  d.damping_user.a_M = options.rayleigh_mass;
+  d.damping_user.b_K = options.rayleigh_stiffness;
+  if (options.damping.rows != 0 || options.damping.cols != 0 || !options.damping.value.empty())
+    d.damping_user.C_user = to_sparse(options.damping, "damping matrix");
+  check_damping(d.damping_user, d.K_user.rows());
+  if (options.obstacle) d.obstacle = make_obstacle(*options.obstacle);
+  if (options.mass == "redistributed") {
+    if (contact.gaps.empty())
+      throw InputError("contact set is empty: expected at least one contact node (gaps)");
+    d.positions = positions_of(options, d.K_user.rows());
+  }
+  build_problem(d, contact);
+}
+
+Model::Model(std::unique_ptr<Data> data) : data_(std::move(data)) {}
+Model::~Model() = default;
+
+std::shared_ptr<const Model> Model::with_contacts(const ContactDescription& contact) const {
+  auto d = std::make_unique<Data>();
+  const Data& mine = *data_;
+  d->options = mine.options;
+  d->fixed = mine.fixed;
+  d->M_user = mine.M_user;
+  d->K_user = mine.K_user;
+  d->damping_user = mine.damping_user;
+  d->positions = mine.positions;
+  d->obstacle = mine.obstacle;
+  build_problem(*d, contact);
+  return std::shared_ptr<const Model>(new Model(std::move(d)));
+}
+
+long Model::n_dofs() const { return data_->problem->n_dofs(); }
+long Model::n_contact() const { return data_->problem->n_contact(); }
+const ModelOptions& Model::options() const { return data_->options; }
+const std::vector<long>& Model::fixed_dofs() const { return data_->fixed; }
+bool Model::massless_boundary() const { return data_->problem->massless_boundary(); }
+const ContactProblem& Model::problem() const { return *data_->problem; }
+
+}  // namespace nbm

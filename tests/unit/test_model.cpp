@@ -1,0 +1,141 @@
+// nbm::Model, the structure built once and shared: time integrators built on
+// it follow the shorthand Solver(M, K, contact, options) bit for bit, share
+// its contact problem, and meet the same checks; a model needs no time step.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "api/model.hpp"
+#include "api/solver.hpp"
+#include "base/errors.hpp"
+#include "contact/contact_problem.hpp"
+#include "test_problems.hpp"
+#include "test_util.hpp"
+
+namespace {
+
+using nbm::Model;
+using nbm::ModelOptions;
+using nbm::SchemeOptions;
+using nbm::Solver;
+using nbm::SolverOptions;
+using nbm_test::expect_throw_with;
+using StdVec = std::vector<double>;
+
+// A plate on an inclined ground (rotated contact nodes), dropped from a gap.
+struct InclinedPlate {
+  nbm_test::Plate plate;
+  nbm_test::Assembled a;
+  nbm::CooMatrix M, K;
+  nbm::ContactDescription contact;
+  StdVec F, positions;
+  InclinedPlate() {
+    plate.angle = 0.4;
+    a = assemble(plate);
+    M = nbm_test::to_coo(a.M);
+    K = nbm_test::to_coo(a.K);
+    contact = nbm_test::bottom_contact(plate, 0.01);
+    F = nbm_test::to_std(a.F);
+    const Eigen::MatrixXd X = nbm_test::node_positions(plate);
+    for (Eigen::Index i = 0; i < X.rows(); ++i)
+      for (Eigen::Index j = 0; j < X.cols(); ++j) positions.push_back(X(i, j));
+  }
+  ModelOptions model_options(const std::string& mass) const {
+    ModelOptions o;
+    o.mass = mass;
+    if (mass == "redistributed") o.positions = positions;
+    o.rayleigh_mass = 0.5;  // the model carries the damping
+    return o;
+  }
+};
+
+class ModelShared : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ModelShared, IntegratorsOfOneModelFollowTheShorthandBitForBit) {
+  const InclinedPlate p;
+  const ModelOptions mo = p.model_options(GetParam());
+  const auto model = std::make_shared<const Model>(p.M, p.K, p.contact, mo);
+  for (const double dt : {1e-3, 2.5e-3}) {
+    SchemeOptions so;
+    so.dt = dt;
+    Solver on_model(model, so);
+    SolverOptions both;
+    static_cast<ModelOptions&>(both) = mo;
+    static_cast<SchemeOptions&>(both) = so;
+    Solver shorthand(p.M, p.K, p.contact, both);
+    // The integrator reads the model's problem, not a copy.
+    EXPECT_EQ(&on_model.model()->problem(), &model->problem());
+    const auto a = nbm_test::displacements(on_model, p.F, 120);
+    const auto b = nbm_test::displacements(shorthand, p.F, 120);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) ASSERT_EQ(a[k], b[k]) << "step " << k;
+    long touching = 0;  // the plate rests on the ground at the end
+    for (long a : on_model.active()) touching += a;
+    EXPECT_GT(touching, 0) << "the plate never touched the ground: the comparison proves little";
+    EXPECT_EQ(on_model.options().rayleigh_mass, 0.5);
+    EXPECT_EQ(on_model.options().dt, dt);
+  }
+  EXPECT_EQ(model.use_count(), 1);  // the integrators are gone, the model stays
+}
+
+INSTANTIATE_TEST_SUITE_P(BothMasses, ModelShared,
+                         ::testing::Values("consistent", "redistributed"));
+
+TEST(Model, ReplacingContactsGivesTheIntegratorItsOwnModel) {
+  const InclinedPlate p;
+  const auto model = std::make_shared<const Model>(p.M, p.K, p.contact, p.model_options("consistent"));
+  SchemeOptions so;
+  so.dt = 1e-3;
+  Solver s(model, so);
+  StdVec u(p.F.size(), 0.0), v(p.F.size(), 0.0);
+  s.initialize(u, v, p.F);
+  nbm::ContactDescription fewer = p.contact;
+  const long d = 2;
+  fewer.dofs.resize(fewer.dofs.size() - d);
+  fewer.normals.resize(fewer.normals.size() - d);
+  fewer.gaps.pop_back();
+  s.replace_contacts(fewer, u, v, p.F);
+  EXPECT_NE(s.model(), model);
+  EXPECT_EQ(s.n_contact(), model->n_contact() - 1);
+  EXPECT_EQ(model->n_contact(), static_cast<long>(p.contact.gaps.size()));  // unchanged
+  s.step(u, v, p.F);
+}
+
+TEST(ModelErrors, TheModelChecksItsOwnOptions) {
+  const InclinedPlate p;
+  ModelOptions o;
+  o.mass = "lumped";
+  expect_throw_with<nbm::InputError>([&] { Model(p.M, p.K, p.contact, o); }, {"mass: \"lumped\""});
+  o = ModelOptions();
+  o.positions = p.positions;
+  expect_throw_with<nbm::InputError>([&] { Model(p.M, p.K, p.contact, o); },
+                                     {"positions: given with mass = \"consistent\""});
+  o = ModelOptions();
+  o.mass = "redistributed";
+  expect_throw_with<nbm::InputError>([&] { Model(p.M, p.K, p.contact, o); }, {"positions: size 0"});
+  o = ModelOptions();
+  o.rayleigh_mass = -1;
+  expect_throw_with<nbm::InputError>([&] { Model(p.M, p.K, p.contact, o); }, {"a_M: -1"});
+}
+
+TEST(ModelErrors, TheIntegratorChecksItsSchemeAgainstTheModel) {
+  const InclinedPlate p;
+  const auto massless =
+      std::make_shared<const Model>(p.M, p.K, p.contact, p.model_options("redistributed"));
+  SchemeOptions so;
+  so.dt = 1e-3;
+  so.scheme = "explicit";
+  expect_throw_with<nbm::InputError>([&] { Solver(massless, so); },
+                                     {"mass: \"redistributed\" needs scheme \"newmark\""});
+  const auto damped =
+      std::make_shared<const Model>(p.M, p.K, p.contact, p.model_options("consistent"));
+  so = SchemeOptions();
+  so.dt = 1e-3;
+  so.energy = "bounded";
+  expect_throw_with<nbm::InputError>([&] { Solver(damped, so); }, {"energy: given without"});
+  expect_throw_with<nbm::InputError>([&] { Solver(nullptr, so); }, {"model: none given"});
+  so = SchemeOptions();
+  expect_throw_with<nbm::InputError>([&] { Solver(damped, so); }, {"dt"});
+}
+
+}  // namespace
