@@ -4,7 +4,8 @@
 # (plate-setup.idp's defaults), checking at every step a finite state and
 # impenetrability, the energy against its initial value E0 where a bound is
 # claimed, and the resident memory of FreeFem++ (VmRSS, 100 samples): less
-# than 1% growth between the first and the last tenth of each run.
+# than 1% growth over the second half of each run (the growth from the first
+# tenth, when bounded caches fill, is reported).
 #   bash tests/long-run.sh           # shortened: 10^5 bar steps, 10^4 plate steps
 #                                    # (about 30 s; the test command's script.long-run)
 #   bash tests/long-run.sh --full    # 10^6 bar steps, 10^5 plate steps (about 3 min)
@@ -12,10 +13,11 @@
 # Runs and what is checked:
 #   bar   mass=redistributed, dt = h/(4c)   E <= E0 + 1e-3 m g h0
 #   bar   moreau-jean, e = 1, dt = h/c      E <= E0 + 1e-6 m g h0 (penetration not checked)
-#   bar   paper NBM (consistent), dt = h/c  energy reported, not bounded: the semi-discrete
-#         paper NBM gains energy at lift-offs (tests/periodic/test_bouncing_bar_energy.cpp)
+#   bar   paper NBM (consistent), dt = h/c  E <= E0 + 1e-3 m g h0 (its energy-stable step,
+#         method.md §5.3; without it the paper's step gains energy at lift-offs,
+#         tests/periodic/test_bouncing_bar_energy.cpp)
 #   plate mass=redistributed                E <= E0 + 1e-3 m g h0
-#   plate paper NBM (consistent)            energy reported, not bounded
+#   plate paper NBM (consistent)            E <= E0 + 1e-3 m g h0
 # The last line is "long-run: N passed, M failed".
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
@@ -49,8 +51,8 @@ run() {  # run <label> <long-run.edp args...>
 }
 run bar-redistributed -body bar -steps $bar_steps -mass redistributed -dtFactor 0.25 -energyTol 1e-3
 run bar-moreau-jean -body bar -steps $bar_steps -scheme moreau-jean -restitution 1 -energyTol 1e-6
-run bar-paper -body bar -steps $bar_steps -energyTol -1
+run bar-paper -body bar -steps $bar_steps -energyTol 1e-3
 run plate-redistributed -body plate -steps $plate_steps -mass redistributed -energyTol 1e-3
-run plate-paper -body plate -steps $plate_steps -energyTol -1
+run plate-paper -body plate -steps $plate_steps -energyTol 1e-3
 echo "long-run: $passed passed, $failed failed"
 [ $failed -eq 0 ]
