@@ -69,7 +69,7 @@ Measured at_rest(const nbm_bench::Plate& p, const nbm_bench::Assembled& a,
       {}, mass == Mass::kMassless ? &X : nullptr);
   std::unique_ptr<nbm::NbmStepper> s;
   if (mass == Mass::kMassless) {
-    s = std::make_unique<nbm::MasslessNewmarkStepper>(problem, dt, 0.25, 0.5, nbm::Damping{},
+    s = std::make_unique<nbm::MasslessNewmarkStepper>(problem, dt, nbm::SchemeParameters{}, nbm::Damping{},
                                                       nbm::ContactColumns::kAuto, energy);
   } else {
     nbm::NewmarkParameters parameters;

@@ -5,6 +5,7 @@
 //   NBMModel Mo(M, K, cdofs, normals, gaps, fixed = fixedDofs,
 //               mass = "redistributed", positions = xy);  // the structure, once
 //   NBM S(Mo, dt = 1e-3, scheme = "newmark", beta = 0.25, gamma = 0.5);
+//   NBM A(Mo, dt = 1e-3, scheme = "generalized-alpha", rhoInf = 0.8);  // or "hht-alpha"
 //   nbmPeriodicOrbit(Mo, u, v, T, F, ...);  // periodic tools take the model
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, ...);  // shorthand: a model
 //                                   // of its own (every named argument above)
@@ -47,11 +48,12 @@ constexpr int kModelParams = 7;
       {"rayleighK", &typeid(double)}, {"damping", &typeid(Matrice_Creuse<double>*)}, \
       {"obstacle", &typeid(ObstacleHandle*)}
 // The named arguments of a time integrator (NBM), in this order.
-constexpr int kSchemeParams = 7;
+constexpr int kSchemeParams = 8;
 #define NBM_SCHEME_PARAMS                                                       \
   {"dt", &typeid(double)}, {"scheme", &typeid(string*)}, {"beta", &typeid(double)}, \
       {"gamma", &typeid(double)}, {"restitution", &typeid(double)},             \
-      {"energy", &typeid(string*)}, {"crossings", &typeid(string*)}
+      {"energy", &typeid(string*)}, {"crossings", &typeid(string*)},            \
+      {"rhoInf", &typeid(double)}
 
 // The model of (M, K, cdofs, normals, gaps) and the named arguments `a`
 // (NBM_MODEL_PARAMS), built by `function`.
@@ -95,6 +97,7 @@ void build_solver(Stack s, NbmHandle* h, std::shared_ptr<const nbm::Model> model
   if (a[3]) opt.gamma = GetAny<double>((*a[3])(s));
   if (a[4]) opt.restitution = GetAny<double>((*a[4])(s));
   if (a[5]) opt.energy = *GetAny<string*>((*a[5])(s));
+  if (a[7]) opt.rho_inf = GetAny<double>((*a[7])(s));
   bool fatal = false;
   if (a[6]) {
     const string mode = *GetAny<string*>((*a[6])(s));

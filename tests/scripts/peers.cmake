@@ -14,6 +14,12 @@ add_test(NAME script.plate-agreement-nbm-nitsche
           "0.1 0.05 0.025" -dt 1e-4 -T 0.35
   WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
 set_tests_properties(script.plate-agreement-nbm-nitsche PROPERTIES TIMEOUT 600 LABELS script)
+# The same with the NBM on generalized-alpha (rhoInf = 0.6, method.md §5.4).
+add_test(NAME script.plate-agreement-generalized-alpha
+  COMMAND bash ${PEERS_DIR}/plate-agreement.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}
+          "0.1 0.05 0.025" -dt 1e-4 -T 0.35 -scheme generalized-alpha -rhoInf 0.6
+  WORKING_DIRECTORY ${NBM_SCRIPT_OUT})
+set_tests_properties(script.plate-agreement-generalized-alpha PROPERTIES TIMEOUT 600 LABELS script)
 
 # Each peer, P1 and P2, through the first impact and rebound: exit 0, outputs
 # written, penetration printed (these methods penetrate; only finiteness is

@@ -56,7 +56,7 @@ enum class Mass { kMassless, kConsistent };
 void newmark(Simulation& s, Mass mass, double dt, const Eigen::MatrixXd& positions,
              EnergyControl energy) {
   if (mass == Mass::kMassless) {
-    s.massless(dt, positions, 0.25, 0.5, energy);
+    s.massless(dt, positions, {}, energy);
     return;
   }
   nbm::NewmarkParameters parameters;

@@ -231,9 +231,9 @@ TEST(MasslessNewmark, RecomputedContactColumnsStepAsKeptOnes) {
                                       &positions);
     nbm::Damping damping;
     damping.b_K = b_K;
-    nbm::MasslessNewmarkStepper kept(problem, 1e-3, 0.25, 0.5, damping,
+    nbm::MasslessNewmarkStepper kept(problem, 1e-3, {}, damping,
                                      nbm::ContactColumns::kKept),
-        recomputed(problem, 1e-3, 0.25, 0.5, damping, nbm::ContactColumns::kRecomputed);
+        recomputed(problem, 1e-3, {}, damping, nbm::ContactColumns::kRecomputed);
     EXPECT_TRUE(kept.keeps_contact_columns());
     EXPECT_FALSE(recomputed.keeps_contact_columns());
     const Vec F = problem.to_internal(s.a.F), zero = Vec::Zero(problem.size());

@@ -311,7 +311,7 @@ TEST(NewmarkImpenetrability, HoldsForSeveralTimeStepsAndParameters) {
     const int steps = static_cast<int>(0.8 / c.dt);
     {
       Simulation s = falling_bar();
-      s.newmark(c.dt, {c.beta, c.gamma});
+      s.newmark(c.dt, {{c.beta, c.gamma}});
       start_bar(s);
       const BounceStats st = bounce(s, nbm_test::ground_contact(), steps, false);
       EXPECT_GT(st.closed_steps, 0);
@@ -320,7 +320,7 @@ TEST(NewmarkImpenetrability, HoldsForSeveralTimeStepsAndParameters) {
       Plate p;
       p.angle = -0.25;
       Simulation s = falling_plate(p, 0.02);
-      s.newmark(c.dt, {c.beta, c.gamma});
+      s.newmark(c.dt, {{c.beta, c.gamma}});
       start_plate(s);
       const BounceStats st = bounce(s, nbm_test::bottom_contact(p, 0.02), steps, false);
       EXPECT_GT(st.closed_steps, 0);

@@ -37,7 +37,7 @@ void set_scheme(Simulation& s, Scheme scheme, double dt, const Eigen::MatrixXd& 
   switch (scheme) {
     case Scheme::Newmark: s.newmark(dt, parameters); break;
     case Scheme::Massless:
-      s.massless(dt, positions, parameters.beta, parameters.gamma);
+      s.massless(dt, positions, parameters.scheme);
       break;
     case Scheme::Explicit: s.explicit_scheme(dt); break;
   }
@@ -438,8 +438,8 @@ TEST(RobustnessResting, PutDownUndeformedSettlesWithoutChattering) {
       p.ny = 4;
       Simulation s(assemble(p), nbm_test::bottom_contact(p, 0.0));
       nbm::NewmarkParameters prm;
-      prm.gamma = gamma;
-      prm.beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
+      prm.scheme.gamma = gamma;
+      prm.scheme.beta = 0.25 * (gamma + 0.5) * (gamma + 0.5);
       set_scheme(s, scheme, 1e-3, nbm_test::node_positions(p), prm);
       const Vec us = static_equilibrium(s);
       s.initialize(Vec::Zero(p.n_dofs()), Vec::Zero(p.n_dofs()));

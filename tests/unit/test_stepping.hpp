@@ -40,14 +40,13 @@ struct Simulation {
   /// Massless boundary: the problem rebuilt with the redistributed mass
   /// (positions: one row per user dof, its node's coordinates), then the
   /// LCP-per-step Newmark scheme.
-  void massless(double dt, const Eigen::MatrixXd& positions, double beta = 0.25,
-                double gamma = 0.5,
+  void massless(double dt, const Eigen::MatrixXd& positions, nbm::SchemeParameters scheme = {},
                 nbm::EnergyControl energy = nbm::EnergyControl::kBounded) {
     stepper.reset();  // it refers to the problem
     problem = std::make_unique<nbm::ContactProblem>(a.M, a.K, problem->contacts(),
                                                     problem->fixed(), &positions);
     stepper = std::make_unique<nbm::MasslessNewmarkStepper>(
-        *problem, dt, beta, gamma, nbm::Damping{}, nbm::ContactColumns::kAuto, energy);
+        *problem, dt, scheme, nbm::Damping{}, nbm::ContactColumns::kAuto, energy);
   }
   void moreau_jean(double dt, double restitution) {
     stepper = std::make_unique<nbm::MoreauJeanStepper>(*problem, dt, restitution);

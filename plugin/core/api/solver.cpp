@@ -9,6 +9,7 @@
 #include "base/errors.hpp"
 #include "time/central_difference_stepper.hpp"
 #include "time/following_frame_stepper.hpp"
+#include "time/generalized_alpha.hpp"
 #include "time/massless_newmark_stepper.hpp"
 #include "time/moreau_jean_stepper.hpp"
 #include "time/newmark_stepper.hpp"
@@ -28,11 +29,17 @@ Vector to_vector(const std::vector<double>& x, long n, const char* name) {
 }
 
 // Checks the scheme's options and how they go with the model's.
+// The implicit NBM schemes of Newmark's family (implicit_scheme.hpp).
+bool implicit_nbm(const std::string& scheme) {
+  return scheme == "newmark" || scheme == "generalized-alpha" || scheme == "hht-alpha";
+}
+
 void check_options(const SchemeOptions& options, const ModelOptions& model) {
   const std::string& scheme = options.scheme;
-  if (scheme != "newmark" && scheme != "explicit" && scheme != "moreau-jean")
+  if (!implicit_nbm(scheme) && scheme != "explicit" && scheme != "moreau-jean")
     throw InputError("scheme: \"" + scheme +
-                     "\", expected \"newmark\", \"explicit\" or \"moreau-jean\"");
+                     "\", expected \"newmark\", \"generalized-alpha\", \"hht-alpha\", "
+                     "\"explicit\" or \"moreau-jean\"");
   if (scheme != "newmark")
     for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
       if (value->has_value())
@@ -40,13 +47,20 @@ void check_options(const SchemeOptions& options, const ModelOptions& model) {
                          (scheme == "explicit"
                               ? ", which is central differences (beta = 0, gamma = 1/2); "
                                 "Newmark parameters need scheme \"newmark\""
-                              : ", whose theta = 1/2 is fixed"));
+                          : scheme == "moreau-jean"
+                              ? ", whose theta = 1/2 is fixed"
+                              : ", whose parameters follow from rhoInf (method.md §5.4)"));
+  if (options.rho_inf.has_value() && scheme != "generalized-alpha" && scheme != "hht-alpha")
+    throw InputError("rhoInf: given with scheme \"" + scheme +
+                     "\"; it is the spectral radius at infinity of schemes "
+                     "\"generalized-alpha\" and \"hht-alpha\"");
   if (options.restitution.has_value() && scheme != "moreau-jean")
     throw InputError("restitution: given with scheme \"" + scheme +
                      "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
   if (model.obstacle && scheme != "newmark")
     throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
-                     "contact frame follows the body only with massless contact nodes)");
+                     "contact frame follows the body only with massless contact nodes, and "
+                     "with Newmark's scheme)");
   if (options.energy) {
     const std::string& energy = *options.energy;
     if (energy != "bounded" && energy != "monotone" && energy != "none")
@@ -61,9 +75,21 @@ void check_options(const SchemeOptions& options, const ModelOptions& model) {
                        "no obstacle, and with mass = \"consistent\" no damping at all "
                        "(method.md §5.1, §5.3)");
   }
-  if (model.mass == "redistributed" && scheme != "newmark")
-    throw InputError("mass: \"redistributed\" needs scheme \"newmark\" (the massless "
-                     "boundary has no explicit or Moreau-Jean variant)");
+  if (model.mass == "redistributed" && !implicit_nbm(scheme))
+    throw InputError("mass: \"redistributed\" needs scheme \"newmark\", "
+                     "\"generalized-alpha\" or \"hht-alpha\" (the massless boundary has no "
+                     "explicit or Moreau-Jean variant)");
+}
+
+// The implicit scheme's parameters (options checked).
+SchemeParameters scheme_parameters(const SchemeOptions& options) {
+  constexpr double kDefaultRhoInf = 0.8;
+  if (options.scheme == "generalized-alpha")
+    return generalized_alpha(options.rho_inf.value_or(kDefaultRhoInf));
+  if (options.scheme == "hht-alpha") return hht_alpha(options.rho_inf.value_or(kDefaultRhoInf));
+  const SchemeParameters defaults;
+  return SchemeParameters::newmark(options.beta.value_or(defaults.beta),
+                                   options.gamma.value_or(defaults.gamma));
 }
 
 // What the energy-stable step bounds (option energy, checked): "bounded" by
@@ -80,25 +106,22 @@ std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model:
                                       double& critical_dt) {
   critical_dt = 0;
   const ContactProblem& problem = *model.problem;
-  const NewmarkParameters defaults;
-  const double beta = options.beta.value_or(defaults.beta);
-  const double gamma = options.gamma.value_or(defaults.gamma);
+  const SchemeParameters scheme = scheme_parameters(options);
   if (model.obstacle) {
     FollowingFrameOptions frame;
-    frame.beta = beta;
-    frame.gamma = gamma;
+    frame.beta = scheme.beta;
+    frame.gamma = scheme.gamma;
     return std::make_unique<FollowingFrameStepper>(problem, model.M_user, model.positions,
                                                    model.obstacle, options.dt, frame,
                                                    model.damping_user);
   }
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, beta, gamma,
-                                                    model.damping, ContactColumns::kAuto,
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, scheme, model.damping,
+                                                    ContactColumns::kAuto,
                                                     energy_control(options));
-  if (options.scheme == "newmark") {
+  if (implicit_nbm(options.scheme)) {
     NewmarkParameters parameters;
-    parameters.beta = beta;
-    parameters.gamma = gamma;
+    parameters.scheme = scheme;
     parameters.energy = energy_control(options);
     return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, model.damping);
   }

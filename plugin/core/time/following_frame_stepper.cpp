@@ -9,7 +9,7 @@
 #include "contact/mass_redistribution.hpp"
 #include "linalg/lcp.hpp"
 #include "linalg/mass_solve.hpp"
-#include "time/newmark_iteration.hpp"
+#include "time/implicit_scheme.hpp"
 
 namespace nbm {
 namespace {

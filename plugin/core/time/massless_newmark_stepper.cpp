@@ -51,12 +51,12 @@ const Damping& check_boundary_undamped(const ContactProblem& problem, const Damp
 }  // namespace
 
 MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, double dt,
-                                               double beta, double gamma,
+                                               const SchemeParameters& scheme,
                                                const Damping& damping, ContactColumns columns,
                                                EnergyControl energy)
     : NbmStepper(problem, dt, check_boundary_undamped(problem, damping), energy,
-                 beta == 0.25 && gamma == 0.5 && damping.b_K == 0),
-      iteration_((check_massless(problem), problem), dt, beta, gamma, C_),
+                 scheme.average_acceleration() && damping.b_K == 0),
+      iteration_((check_massless(problem), problem), dt, scheme, C_),
       S_(*iteration_.S()),
       contact_row_scale_(1 + iteration_.gamma_dt() * damping.b_K / iteration_.beta_dt2()) {
   const SparseMatrix& E_C = problem.constraint_basis().rightCols(problem.n_contact());
@@ -77,6 +77,7 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
     compliance = iteration_.contact_compliance();
   compliance *= iteration_.beta_dt2();
   lcp_ = std::make_unique<CachedLcpSolver>(std::move(compliance));
+  uses_scheme(iteration_);
 }
 
 void MasslessNewmarkStepper::solve_acceleration(const ContactLoad& load) {

@@ -71,7 +71,7 @@
 #include "linalg/lcp.hpp"
 #include "linalg/mass_solve.hpp"
 #include "time/nbm_stepper.hpp"
-#include "time/newmark_iteration.hpp"
+#include "time/implicit_scheme.hpp"
 
 namespace nbm {
 
@@ -84,12 +84,14 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// The problem must have a massless boundary (ContactProblem::
   /// make_boundary_massless). Factors S once and forms W_CC, and Y if it is
   /// kept (n_contact sparse forward substitutions).
-  /// Throws InputError on beta, gamma out of (0, 1/2] x [1/2, 1] or a problem
-  /// with boundary mass, NumericalError if S is not positive definite.
-  /// Throws InputError, too, if the damping matrix C_user couples a
-  /// contact dof.
-  MasslessNewmarkStepper(const ContactProblem& problem, double dt, double beta = 0.25,
-                         double gamma = 0.5, const Damping& damping = {},
+  /// `scheme`: Newmark's or generalized-alpha's parameters
+  /// (implicit_scheme.hpp; beta, gamma above stand for its effective ones).
+  /// Throws InputError on a problem with boundary mass, NumericalError if S
+  /// is not positive definite. Throws InputError, too, if the damping matrix
+  /// C_user couples a contact dof. The energy-stable step is taken with
+  /// average acceleration only.
+  MasslessNewmarkStepper(const ContactProblem& problem, double dt,
+                         const SchemeParameters& scheme = {}, const Damping& damping = {},
                          ContactColumns columns = ContactColumns::kAuto,
                          EnergyControl energy = EnergyControl::kBounded);
 
@@ -124,7 +126,7 @@ class MasslessNewmarkStepper final : public NbmStepper {
   /// returned to the relation; their balance (after prepare_blend).
   double blend(double theta, const ContactLoad& next);
 
-  NewmarkIteration iteration_;
+  ImplicitScheme iteration_;
   const CholeskyInverse& S_;              // the iteration matrix
   bool keep_columns_;                     // Y kept (header)
   SparseMatrix Y_;                        // L^-1 P E_C, if kept

@@ -12,7 +12,7 @@ MoreauJeanStepper::MoreauJeanStepper(const ContactProblem& problem, double dt,
                                      double restitution, const Damping& damping)
     : Stepper(problem, dt, damping),
       restitution_(restitution),
-      iteration_(problem, dt, 0.25, 0.5, C_),
+      iteration_(problem, dt, SchemeParameters::newmark(0.25, 0.5), C_),
       S_(*iteration_.S()),
       W_CC_(iteration_.contact_compliance()),
       impulse_(Vector::Zero(problem.n_contact())) {

@@ -20,7 +20,7 @@
 
 #include <memory>
 
-#include "time/newmark_iteration.hpp"
+#include "time/implicit_scheme.hpp"
 #include "time/stepper.hpp"
 
 namespace nbm {
@@ -54,7 +54,7 @@ class MoreauJeanStepper final : public Stepper {
   void solve_acceleration(const Vector& F);
 
   double restitution_;
-  NewmarkIteration iteration_;  // its matrix M + dt/2 C + dt^2/4 K (beta = 1/4)
+  ImplicitScheme iteration_;  // its matrix M + dt/2 C + dt^2/4 K (beta = 1/4)
   const CholeskyInverse& S_;
   Matrix W_CC_;
   Vector impulse_;

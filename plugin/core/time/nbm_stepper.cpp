@@ -13,7 +13,10 @@ NbmStepper::NbmStepper(const ContactProblem& problem, double dt, const Damping& 
       budget_(energy) {}
 
 Vector NbmStepper::scheme_state() const {
-  return energy_stable_ ? budget_.state() : Vector();
+  // The energy-stable step exists only for average acceleration, which has
+  // no state of its own: at most one of the two is not empty.
+  if (energy_stable_) return budget_.state();
+  return scheme_ ? scheme_->state() : Vector();
 }
 
 void NbmStepper::carry_over(const Stepper& previous) {
@@ -24,6 +27,8 @@ void NbmStepper::carry_over(const Stepper& previous) {
 void NbmStepper::restore_scheme_state(const Vector& state) {
   if (energy_stable_)
     budget_.restore(state, "the energy-stable step");
+  else if (scheme_ && scheme_->parameters().weighted())
+    scheme_->restore_state(state);
   else
     Stepper::restore_scheme_state(state);
 }
@@ -34,6 +39,7 @@ void NbmStepper::start(const ContactLoad& load) {
   rate_constraint(load, active_, h_);
   boundary_.project(v_, active_, h_);
   solve_acceleration(load);
+  if (scheme_) scheme_->start(a_);
 }
 
 StepReport NbmStepper::advance(const ContactLoad& next) {
@@ -42,6 +48,7 @@ StepReport NbmStepper::advance(const ContactLoad& next) {
   boundary_.project(v_, active_, h_);
   acceleration_constraint(next, active_, h_);
   boundary_.project(a_, active_, h_);
+  if (scheme_) scheme_->finish(a_);
   return report;
 }
 

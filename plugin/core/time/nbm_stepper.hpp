@@ -8,6 +8,7 @@
 
 #include "contact/nodal_boundary.hpp"
 #include "time/energy_budget.hpp"
+#include "time/implicit_scheme.hpp"
 #include "time/stepper.hpp"
 
 namespace nbm {
@@ -28,7 +29,9 @@ class NbmStepper : public Stepper {
   /// Steps since the start that were taken between two candidates: those on
   /// which the scheme's own step would have gained more than allowed.
   long balanced_steps() const { return budget_.balanced_steps(); }
-  /// [returnable_loss()] with the energy-stable step, else empty.
+  /// [returnable_loss()] with the energy-stable step, the time scheme's state
+  /// (generalized-alpha's algorithmic acceleration) with a scheme that has
+  /// one, else empty.
   Vector scheme_state() const override;
   /// The returnable loss of a previous energy-stable run (a global budget:
   /// it outlives the contact set).
@@ -40,12 +43,17 @@ class NbmStepper : public Stepper {
   NbmStepper(const ContactProblem& problem, double dt, const Damping& damping,
              EnergyControl energy = EnergyControl::kNone, bool has_energy_step = false);
 
+  /// An implicit scheme's stepper hands its time scheme over (constructor),
+  /// whose own state this class then starts, finishes each step with, saves
+  /// and restores.
+  void uses_scheme(ImplicitScheme& scheme) { scheme_ = &scheme; }
+
   /// u_C from the LCP, v_C = A v_O + e', then solve_acceleration (and
-  /// nothing returnable yet).
+  /// nothing returnable yet); the time scheme's state from a.
   void start(const ContactLoad& load) override;
   void restore_scheme_state(const Vector& state) override;
   /// advance_interior(), then v_C and a_C from the nodal boundary relation of
-  /// the new active set.
+  /// the new active set, and the time scheme's state from them.
   StepReport advance(const ContactLoad& next) final;
   /// The scheme's step of u_, v_, a_ and active_; their contact parts are
   /// completed afterwards.
@@ -87,6 +95,7 @@ class NbmStepper : public Stepper {
   void constraint(const Vector& closed, const Vector* open, const ActiveSet& active,
                   Vector& h) const;
 
+  ImplicitScheme* scheme_ = nullptr;  // the derived class's, if implicit
   Vector h_;       // workspace: the constraints of the rates
   Vector mean_velocity_;  // workspace of balance()
 };

@@ -10,10 +10,12 @@ namespace nbm {
 NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
                                NewmarkParameters parameters, const Damping& damping)
     : NbmStepper(problem, dt, damping, parameters.energy,
-                 parameters.beta == 0.25 && parameters.gamma == 0.5 && damping.none()),
+                 parameters.scheme.average_acceleration() && damping.none()),
       parameters_(parameters),
-      iteration_(problem, dt, parameters.beta, parameters.gamma, C_),
-      solver_(iteration_.S(), problem.constraint_basis()) {}
+      iteration_(problem, dt, parameters.scheme, C_),
+      solver_(iteration_.S(), problem.constraint_basis()) {
+  uses_scheme(iteration_);
+}
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.

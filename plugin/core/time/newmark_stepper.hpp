@@ -1,6 +1,8 @@
-// Implicit Newmark on the reduced NBM equations (method.md §5), with the
-// active set consistent at t_{n+1}. With damping C (method.md §9) the
-// constrained form (4.3) gains C v: the iteration matrix is
+// The paper's NBM contact step (active set consistent at t_{n+1}; method.md
+// §5, §5.2) composed with an implicit time scheme (implicit_scheme.hpp:
+// Newmark, generalized-alpha; written below with Newmark's beta, gamma,
+// which stand for the scheme's effective beta', gamma'). With damping C
+// (method.md §9) the constrained form (4.3) gains C v: the iteration matrix is
 // M + gamma dt C + beta dt^2 K and the right-hand side -C v~; the contact
 // dofs' damping forces reach the interior through P^T, like their inertia.
 #pragma once
@@ -10,24 +12,25 @@
 #include "linalg/constrained_solver.hpp"
 #include "linalg/lcp.hpp"
 #include "time/nbm_stepper.hpp"
-#include "time/newmark_iteration.hpp"
+#include "time/implicit_scheme.hpp"
 
 namespace nbm {
 
 struct NewmarkParameters {
-  double beta = 0.25;  ///< average acceleration by default: energy conserving
-  double gamma = 0.5;
+  /// Newmark's beta, gamma (average acceleration by default: energy
+  /// conserving) or generalized-alpha (generalized_alpha.hpp).
+  SchemeParameters scheme;
   int max_active_set_iterations = 25;
   /// What the energy-stable step (method.md §5.3) bounds; kNone: the
-  /// paper's step alone. Taken with beta = 1/4, gamma = 1/2 and no damping.
+  /// paper's step alone. Taken with average acceleration and no damping.
   EnergyControl energy = EnergyControl::kNone;
 };
 
 class NewmarkStepper final : public NbmStepper {
  public:
-  /// Factors S = M + gamma dt C + beta dt^2 K once. Throws InputError on
-  /// beta, gamma out of (0, 1/2] x [1/2, 1] or bad damping, NumericalError if
-  /// S is not positive definite.
+  /// Factors S = M + gamma' dt C + beta' dt^2 K once (implicit_scheme.hpp).
+  /// Throws InputError on bad damping, NumericalError if S is not positive
+  /// definite.
   NewmarkStepper(const ContactProblem& problem, double dt, NewmarkParameters parameters = {},
                  const Damping& damping = {});
 
@@ -80,7 +83,7 @@ class NewmarkStepper final : public NbmStepper {
   double blend(double theta, const ContactLoad& next);
 
   NewmarkParameters parameters_;
-  NewmarkIteration iteration_;
+  ImplicitScheme iteration_;
   ConstrainedSolver solver_;  // with the iteration matrix
   // Workspaces of a step (sized by the first one): u_pred_, v_pred_ the
   // predictors; u_hat_, h_, r_ of solve_step; the guessed active set and the

@@ -8,8 +8,10 @@
 // and the active set), reactions() and mass(). The NBM schemes, whose contact
 // dofs follow the nodal boundary relation, derive from NbmStepper
 // (nbm_stepper.hpp); Moreau-Jean, whose contact dofs are ordinary unknowns,
-// from Stepper directly. A new scheme (HHT-alpha, generalized-alpha) is one
-// subclass; state of its own that a restart needs goes through
+// from Stepper directly. The implicit steppers are contact steps composed
+// with a time scheme (implicit_scheme.hpp: Newmark, generalized-alpha); a new
+// implicit scheme is a parameter set there, a new contact treatment one
+// subclass. State of its own that a restart needs goes through
 // scheme_state() / restore_scheme_state().
 #pragma once
 
