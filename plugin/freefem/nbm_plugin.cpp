@@ -180,8 +180,6 @@ class NbmOfModel : public E_F0mps {
     if (!m || !m->model)
       fail("NBM: the model was not constructed (declare it as NBMModel Mo(M, K, cdofs, "
            "normals, gaps, ...))");
-    if (static_cast<ModelHandle*>(h) == m)
-      fail("NBM: the NBM object cannot be built on its own model");
     build_solver(s, h, *m->model, nargs);
     return h;
   }

@@ -10,9 +10,6 @@
 namespace nbm {
 namespace {
 
-// Assembly in double precision leaves K symmetric to a few ulps.
-constexpr double kSymmetryTolerance = 1e-10;
-
 // Sizes, finite entries and symmetry of A. Rows and columns of fixed dofs
 // are ignored by the solver, so they are left out of the symmetry test and
 // of its scale (whatever a front end leaves in them, e.g. a penalty).

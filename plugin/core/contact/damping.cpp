@@ -9,10 +9,6 @@
 namespace nbm {
 namespace {
 
-// Assembly in double precision leaves a matrix symmetric to a few ulps (the
-// tolerance of ContactProblem's checks of M and K).
-constexpr double kSymmetryTolerance = 1e-10;
-
 void check_coefficient(double x, const char* name, const char* unit) {
   if (!std::isfinite(x) || x < 0)
     throw InputError(std::string(name) + ": " + std::to_string(x) +

@@ -13,7 +13,7 @@ namespace nbm {
 namespace {
 
 // Switching functions within this fraction of their scale count as zero.
-constexpr double kZeroTolerance = 1e-11;
+constexpr double kSwitchZeroTolerance = 1e-11;
 
 std::vector<Index> select(const std::vector<Index>& from, const ActiveSet& active, bool closed) {
   std::vector<Index> out;
@@ -221,7 +221,7 @@ ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Ve
   ActiveSet next = before.active;
   next[row] = !next[row];
   for (Index j = 0; j < h.size(); ++j)
-    if (j != row && std::abs(h(j)) <= kZeroTolerance * scale && rate(j) < 0) next[j] = !next[j];
+    if (j != row && std::abs(h(j)) <= kSwitchZeroTolerance * scale && rate(j) < 0) next[j] = !next[j];
   // The new region must contain u and be entered, not left, along v.
   const auto after_region = region(next);
   const Region& after = *after_region;
@@ -230,8 +230,8 @@ ActiveSet ReducedField::switched(const Region& before, const Vector& u, const Ve
   const double scale2 = (after.H.cwiseAbs() * u.cwiseAbs() + after.d.cwiseAbs()).maxCoeff();
   bool consistent = true;
   for (Index j = 0; j < h2.size(); ++j)
-    if (h2(j) < -kZeroTolerance * scale2 ||
-        (h2(j) <= kZeroTolerance * scale2 && rate2(j) < 0))
+    if (h2(j) < -kSwitchZeroTolerance * scale2 ||
+        (h2(j) <= kSwitchZeroTolerance * scale2 && rate2(j) < 0))
       consistent = false;
   if (consistent) return next;
   // Degenerate switch (several contacts at a common boundary): the LCP just

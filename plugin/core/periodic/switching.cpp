@@ -12,7 +12,7 @@ namespace {
 
 // Rows within this fraction of their magnitude of zero count as zero: a few
 // hundred ulps of the sum they are computed from.
-constexpr double kZeroTolerance = 1e-13;
+constexpr double kEventZeroTolerance = 1e-13;
 // The search advances at least this fraction of the span per step, so that a
 // tangential contact (h = 0, h' = 0) cannot stall it.
 constexpr double kMinimumStep = 1e-13;
@@ -25,7 +25,7 @@ std::optional<Crossing> first_crossing(const SwitchingFunctions& h, double t0, d
   const Index rows = h.rows();
   if (rows == 0 || t1 <= t0) return std::nullopt;
   const double span = t1 - t0;
-  const Vector tol = kZeroTolerance * h.magnitude(std::max(std::abs(t0), std::abs(t1)));
+  const Vector tol = kEventZeroTolerance * h.magnitude(std::max(std::abs(t0), std::abs(t1)));
   const double min_step = kMinimumStep * span;
 
   double t = t0;

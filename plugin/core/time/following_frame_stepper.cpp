@@ -27,10 +27,6 @@ void check_options(const FollowingFrameOptions& o, const Damping& damping) {
                      "damping only (rayleighM, rayleighK)");
 }
 
-// Y of at most this many entries is kept whatever its size next to L (as in
-// massless_newmark_stepper.cpp): its products run from the cache.
-constexpr double kCachedColumnEntries = 1 << 18;
-
 // Row k of a positions matrix as a point (no heap: called per node and
 // frame iteration).
 Eigen::Vector3d point(const Matrix& p, Index k) {
@@ -117,10 +113,7 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
   // Y = L^-1 P E_N kept where it is small next to L (as the massless step of
   // method.md §5 does): a step is then one substitution each way plus the
   // products with Y, instead of two whole solves.
-  const double entries = S_->forward_entries(E);
-  keep_columns_ = options_.columns == ContactColumns::kAuto
-                      ? entries <= kCachedColumnEntries || 8 * entries <= S_->factor_entries()
-                      : options_.columns == ContactColumns::kKept;
+  keep_columns_ = keeps_contact_columns(options_.columns, *S_, E);
   if (keep_columns_)
     Y_ = S_->forward(E, &Z_);
   else

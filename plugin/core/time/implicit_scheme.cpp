@@ -88,6 +88,14 @@ void ImplicitScheme::restore_state(const Vector& state) {
   b_ = state;
 }
 
+bool keeps_contact_columns(ContactColumns choice, const CholeskyInverse& S,
+                           const SparseMatrix& E) {
+  if (choice != ContactColumns::kAuto) return choice == ContactColumns::kKept;
+  constexpr double kCachedColumnEntries = 1 << 18;
+  const double entries = S.forward_entries(E);
+  return entries <= kCachedColumnEntries || 8 * entries <= S.factor_entries();
+}
+
 SparseMatrix ImplicitScheme::contact_columns(Matrix* compliance) const {
   // Columns E_C of the constraint basis B = [K_{:,C}  E_C].
   return S_->forward(problem_.constraint_basis().rightCols(problem_.n_contact()), compliance);

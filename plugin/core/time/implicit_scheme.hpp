@@ -44,6 +44,17 @@ struct SchemeParameters {
 /// Throws InputError unless 0 < beta <= 1/2 and 1/2 <= gamma <= 1.
 void check_newmark_parameters(double beta, double gamma);
 
+/// Whether the columns Y = L^-1 P E of the contact directions E are kept for
+/// the steps (massless_newmark_stepper.hpp), by their size next to L's, or
+/// forced (both paths give the same steps to round-off; tests compare them).
+enum class ContactColumns { kAuto, kKept, kRecomputed };
+
+/// The choice for E on the factor S: kAuto keeps Y when nnz(Y) <= nnz(L) / 8,
+/// or when Y has at most 2^18 entries (3 MB), whose products run from the
+/// cache, cheaper than a second solve.
+bool keeps_contact_columns(ContactColumns choice, const CholeskyInverse& S,
+                           const SparseMatrix& E);
+
 class ImplicitScheme {
  public:
   /// Factors S = M + gamma' dt C + beta' dt^2 K (C: 0 x 0 for none). Throws

@@ -11,10 +11,6 @@
 namespace nbm {
 namespace {
 
-// Y of at most this many entries (3 MB) is kept whatever its size next to L:
-// its products run from the cache, cheaper than a second solve.
-constexpr double kCachedColumnEntries = 1 << 18;
-
 // The interior mass is solved with on every step the energy-stable step
 // balances (return_to_relation): conjugate gradients take a few tens of
 // products with it (48 on the plate of bench/energy_cost.cpp), a factor one
@@ -66,10 +62,7 @@ MasslessNewmarkStepper::MasslessNewmarkStepper(const ContactProblem& problem, do
   mass_solver_ = std::make_unique<MassSolver>(
       interior_mass_, "M (interior block)",
       S_.factor_entries() <= kFactoredMassEntries ? kFactorMassAfter : 0);
-  const double entries = S_.forward_entries(E_C);
-  keep_columns_ = columns == ContactColumns::kAuto
-                      ? entries <= kCachedColumnEntries || 8 * entries <= S_.factor_entries()
-                      : columns == ContactColumns::kKept;
+  keep_columns_ = nbm::keeps_contact_columns(columns, S_, E_C);
   Matrix compliance;  // W_CC
   if (keep_columns_)
     Y_ = iteration_.contact_columns(&compliance);

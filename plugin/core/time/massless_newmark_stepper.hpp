@@ -75,10 +75,6 @@
 
 namespace nbm {
 
-/// Whether Y = L^-1 P E_C is kept (header): by its size next to L's, or
-/// forced (both paths give the same steps to round-off; tests compare them).
-enum class ContactColumns { kAuto, kKept, kRecomputed };
-
 class MasslessNewmarkStepper final : public NbmStepper {
  public:
   /// The problem must have a massless boundary (ContactProblem::
