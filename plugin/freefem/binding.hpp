@@ -4,6 +4,7 @@
 #pragma once
 
 #include <exception>
+#include <initializer_list>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,6 +91,23 @@ struct ObstacleHandle {
 };
 
 [[noreturn]] inline void fail(const std::string& what) { ExecError("nbm: " + what); throw 0; }
+
+// The value of a string option: the one of `choices` whose name (the core's
+// nbm::name) it is; anything else fails naming the option and the choices.
+// The core's options are typed: option strings exist only here.
+template <class E>
+E choice_of(const std::string& value, const char* function, const char* option,
+            std::initializer_list<E> choices) {
+  std::string expected;
+  std::size_t k = 0;
+  for (E c : choices) {
+    if (value == nbm::name(c)) return c;
+    expected += (k == 0 ? "" : k + 1 == choices.size() ? " or " : ", ");
+    expected += std::string("\"") + nbm::name(c) + "\"";
+    ++k;
+  }
+  fail(std::string(function) + ": " + option + ": \"" + value + "\", expected " + expected);
+}
 
 // Runs f, turning core exceptions into ExecError with their message.
 template <class F>

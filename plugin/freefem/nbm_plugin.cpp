@@ -61,7 +61,9 @@ std::shared_ptr<const nbm::Model> build_model(Stack s, const Expression (&e)[5],
                                               const Expression* a, const char* function) {
   nbm::ModelOptions opt;
   if (a[0]) opt.fixed = vector_of<long>(GetAny<KN<long>*>((*a[0])(s)), function, "fixed");
-  if (a[1]) opt.mass = *GetAny<string*>((*a[1])(s));
+  if (a[1])
+    opt.mass = choice_of(*GetAny<string*>((*a[1])(s)), function, "mass",
+                         {nbm::MassTreatment::kConsistent, nbm::MassTreatment::kRedistributed});
   if (a[2])
     opt.positions = vector_of<double>(GetAny<KN<double>*>((*a[2])(s)), function, "positions");
   if (a[3]) opt.rayleigh_mass = GetAny<double>((*a[3])(s));
@@ -92,11 +94,18 @@ void build_solver(Stack s, NbmHandle* h, std::shared_ptr<const nbm::Model> model
   nbm::SchemeOptions opt;
   if (!a[0]) fail("NBM: the time step dt=... is required");
   opt.dt = GetAny<double>((*a[0])(s));
-  if (a[1]) opt.scheme = *GetAny<string*>((*a[1])(s));
+  if (a[1])
+    opt.scheme = choice_of(*GetAny<string*>((*a[1])(s)), "NBM", "scheme",
+                           {nbm::TimeScheme::kNewmark, nbm::TimeScheme::kGeneralizedAlpha,
+                            nbm::TimeScheme::kHhtAlpha, nbm::TimeScheme::kExplicit,
+                            nbm::TimeScheme::kMoreauJean});
   if (a[2]) opt.beta = GetAny<double>((*a[2])(s));
   if (a[3]) opt.gamma = GetAny<double>((*a[3])(s));
   if (a[4]) opt.restitution = GetAny<double>((*a[4])(s));
-  if (a[5]) opt.energy = *GetAny<string*>((*a[5])(s));
+  if (a[5])
+    opt.energy = choice_of(*GetAny<string*>((*a[5])(s)), "NBM", "energy",
+                           {nbm::EnergyControl::kBounded, nbm::EnergyControl::kMonotone,
+                            nbm::EnergyControl::kNone});
   if (a[7]) opt.rho_inf = GetAny<double>((*a[7])(s));
   bool fatal = false;
   if (a[6]) {

@@ -159,7 +159,7 @@ void check_state(const nbm::Solver& S, const std::vector<double>& u, const std::
   const std::vector<double> gaps = S.gaps();
   if (static_cast<long>(gaps.size()) != S.n_contact()) fail("%s: gaps size", when);
   if (!all_finite(u) || !all_finite(v) || !all_finite(gaps))
-    fail("%s: non-finite state (scheme %s)", when, S.options().scheme.c_str());
+    fail("%s: non-finite state (scheme %s)", when, nbm::name(S.options().scheme));
   const std::vector<double> lambda = S.reactions(), a = S.acceleration(), e = S.energies();
   if (!extreme && (!all_finite(lambda) || !all_finite(a) || !all_finite(e)))
     fail("%s: non-finite reactions, acceleration or energies", when);
@@ -169,7 +169,7 @@ void check_state(const nbm::Solver& S, const std::vector<double>& u, const std::
   for (std::size_t k = 0; k < gaps.size(); ++k)
     if (gaps[k] < -1e-9 * scale)
       fail("%s: penetration at contact node %zu: gap %.17g < -1e-9 * %.17g (scheme %s, mass %s)",
-           when, k, gaps[k], scale, S.options().scheme.c_str(), S.options().mass.c_str());
+           when, k, gaps[k], scale, nbm::name(S.options().scheme), nbm::name(S.options().mass));
 }
 
 }  // namespace
@@ -181,13 +181,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int n = nodes * d;
   // Consumed first: short inputs still take several steps.
   const int steps = fdp.ConsumeIntegralInRange<int>(1, 6);
-  // Newmark (the richest logic: active-set fixed point, fallback, massless
-  // boundary) gets half of the inputs.
-  static const char* const schemes[] = {"newmark", "newmark", "explicit", "moreau-jean"};
+  // The implicit NBM schemes (the richest logic: active-set fixed point,
+  // fallback, massless boundary) get two thirds of the inputs.
+  using nbm::TimeScheme;
+  static const TimeScheme schemes[] = {TimeScheme::kNewmark,  TimeScheme::kNewmark,
+                                       TimeScheme::kGeneralizedAlpha, TimeScheme::kHhtAlpha,
+                                       TimeScheme::kExplicit, TimeScheme::kMoreauJean};
   nbm::SolverOptions opt;
-  opt.scheme = schemes[fdp.ConsumeIntegralInRange<int>(0, 3)];
+  opt.scheme = schemes[fdp.ConsumeIntegralInRange<int>(0, 5)];
+  const bool alpha = opt.scheme == TimeScheme::kGeneralizedAlpha || opt.scheme == TimeScheme::kHhtAlpha;
   const bool redistributed = fdp.ConsumeIntegralInRange<int>(0, 2) == 0;
-  if (redistributed) opt.mass = "redistributed";
+  if (redistributed) opt.mass = nbm::MassTreatment::kRedistributed;
 
   // An extreme value (NaN, inf, 1e300, DBL_MAX, denormals) was injected: the
   // state must stay finite (or the core throw), but derived outputs such as
@@ -265,16 +269,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
 
   // Options.
-  if (opt.scheme == "newmark" || broken == 7) {
+  if (opt.scheme == TimeScheme::kNewmark || broken == 7) {
     if (fdp.ConsumeBool()) opt.beta = nbm_fuzz::uniform(fdp, 1e-3, 0.5);
     if (fdp.ConsumeBool()) opt.gamma = nbm_fuzz::uniform(fdp, 0.5, 1);
     if (broken == 7) opt.beta = fdp.ConsumeBool() ? special() : 0.75;
   }
-  if (opt.scheme == "moreau-jean" && fdp.ConsumeBool())
+  if (alpha && fdp.ConsumeBool()) opt.rho_inf = nbm_fuzz::uniform(fdp, 0.5, 1);
+  if (opt.scheme == TimeScheme::kMoreauJean && fdp.ConsumeBool())
     opt.restitution = nbm_fuzz::uniform(fdp, 0, 1);
   if (broken == 8) opt.restitution = fdp.ConsumeBool() ? special() : 1.5;
-  if (broken == 9) opt.scheme = "central";
-  if (broken == 10) opt.mass = "lumped";
+  if (broken == 9) opt.rho_inf = fdp.ConsumeBool() ? special() : 1.5;  // or with another scheme
+  if (broken == 10) opt.energy = nbm::EnergyControl::kMonotone;   // refused unless Newmark's step
   if (redistributed || broken == 11) {
     const int pdim =
         fdp.ConsumeIntegralInRange<int>(0, 3) == 0 ? fdp.ConsumeIntegralInRange<int>(1, 3) : d;
@@ -292,12 +297,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The core knows only `fixed`: the tgv dofs join it, as in the binding.
   if (!nbm_fuzz::accepted([&] { opt.fixed = nbm_binding::dirichlet_dofs(Mc, Kc, opt.fixed); }))
     return 0;
-  const bool nbm_scheme = opt.scheme != "moreau-jean";
+  const bool nbm_scheme = opt.scheme != TimeScheme::kMoreauJean;
 
   // Time step: from the problem's time scale; for the explicit scheme mostly
   // a fraction of its critical step (read from a first construction).
   opt.dt = T0 * nbm_fuzz::pow10_in(fdp, -3, 0.5);
-  if (opt.scheme == "explicit" && fdp.ConsumeIntegralInRange<int>(0, 3) != 0) {
+  if (opt.scheme == TimeScheme::kExplicit && fdp.ConsumeIntegralInRange<int>(0, 3) != 0) {
     nbm::SolverOptions probe = opt;
     probe.dt = 1e-300;
     double critical = 0;
@@ -325,7 +330,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     };
     std::fprintf(stderr,
                  "n = %d (d = %d), scheme %s, mass %s, dt = %.17g, beta %.17g, gamma %.17g\n", n, d,
-                 opt.scheme.c_str(), opt.mass.c_str(), opt.dt, opt.beta.value_or(-1),
+                 nbm::name(opt.scheme), nbm::name(opt.mass), opt.dt, opt.beta.value_or(-1),
                  opt.gamma.value_or(-1));
     for (const auto& [name, A] : {std::pair{"K", &K}, {"M", &M}}) {
       std::fprintf(stderr, "%s =\n", name);
@@ -347,7 +352,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // With the massless boundary the contact rows carry no inertia: they
   // respond statically, up to |F| / lambda_min(K), within a step.
   const double load_factor =
-      opt.mass == "redistributed" ? 1 / lK : std::min(opt.dt * opt.dt / lM, 1 / lK);
+      opt.mass == nbm::MassTreatment::kRedistributed ? 1 / lK : std::min(opt.dt * opt.dt / lM, 1 / lK);
   const StateScale state_scale{opt.dt, load_factor};
   const double scale0 = std::max(max_abs(u), state_scale.load_factor * max_abs(F0));
   if (!nbm_fuzz::accepted([&] { S->initialize(u, v, F0); })) return 0;

@@ -41,11 +41,11 @@ struct Clamped {
     bar.N = 8;
     a = assemble(bar);
     options.dt = dt;
-    options.scheme = scheme;
+    options.scheme = nbm_test::scheme_named(scheme);
     options.fixed = {bar.N};
     options.rayleigh_mass = a_M;
     options.rayleigh_stiffness = b_K;
-    options.mass = mass;
+    options.mass = nbm_test::mass_named(mass);
     if (mass == "redistributed") {
       const Mat X = nbm_test::node_positions(bar);
       for (int i = 0; i < X.rows(); ++i) options.positions.push_back(X(i, 0));
@@ -266,11 +266,11 @@ TEST(DampedBouncingBar, DissipatesWithoutPenetration) {
     SCOPED_TRACE(std::string(scheme) + "/" + mass);
     nbm::SolverOptions o;
     o.dt = scheme == std::string("explicit") ? 5e-4 : 1e-3;
-    o.scheme = scheme;
-    o.mass = mass;
+    o.scheme = nbm_test::scheme_named(scheme);
+    o.mass = nbm_test::mass_named(mass);
     o.rayleigh_mass = a_M;
     o.rayleigh_stiffness = b_K;
-    if (o.mass == "redistributed")
+    if (o.mass == nbm::MassTreatment::kRedistributed)
       for (int i = 0; i < bar.n_dofs(); ++i) o.positions.push_back(i * bar.h());
     nbm::Solver s(nbm_test::to_coo(a.M), nbm_test::to_coo(a.K), nbm_test::ground_contact(), o);
     std::vector<double> u(bar.n_dofs(), 0.05), v(u.size(), 0.0), F = nbm_test::to_std(a.F);
@@ -341,7 +341,7 @@ TEST(DampingInput, BadDampingIsANamedError) {
   expect_throw_with<nbm::InputError>(build(o), {"damping matrix", "non-finite"});
   // The explicit scheme: mass-proportional damping only.
   o = base.options;
-  o.scheme = "explicit";
+  o.scheme = nbm::TimeScheme::kExplicit;
   o.rayleigh_stiffness = 1e-3;
   expect_throw_with<nbm::InputError>(build(o), {"damping", "explicit", "M + dt/2 C"});
   // The massless boundary: no damping matrix on the contact dofs.

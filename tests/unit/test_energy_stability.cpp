@@ -147,9 +147,8 @@ void expect_energy_bounds(const Rest& r, EnergyControl energy) {
   }
 }
 
-std::string name(EnergyControl energy, Mass mass = Mass::kMassless) {
-  return std::string(energy == EnergyControl::kMonotone ? "monotone" : "bounded") +
-         (mass == Mass::kMassless ? ", massless" : ", consistent");
+std::string label(EnergyControl energy, Mass mass = Mass::kMassless) {
+  return std::string(nbm::name(energy)) + (mass == Mass::kMassless ? ", massless" : ", consistent");
 }
 
 // Nearly incompressible materials and steps from below the transit time of
@@ -158,7 +157,7 @@ std::string name(EnergyControl energy, Mass mass = Mass::kMassless) {
 void block_on_the_ground(EnergyControl energy, Mass mass) {
   for (double nu : {0.3, 0.45, 0.49, 0.499})
     for (double dt : {1e-4, 1e-3, 5e-3}) {
-      SCOPED_TRACE(name(energy, mass) + ", nu " + std::to_string(nu) + ", dt " +
+      SCOPED_TRACE(label(energy, mass) + ", nu " + std::to_string(nu) + ", dt " +
                    std::to_string(dt));
       Block b(10, nu, dt, energy, mass);
       const nbm::Stepper& stepper = *b.s.stepper;
@@ -171,7 +170,7 @@ void block_on_the_ground(EnergyControl energy, Mass mass) {
       if (nu >= 0.49 && dt >= 1e-3) {
         EXPECT_GT(balanced_steps(stepper), 0);
       }
-      std::cout << name(energy, mass) << ", nu " << nu << ", dt " << dt << ": worst step rise "
+      std::cout << label(energy, mass) << ", nu " << nu << ", dt " << dt << ": worst step rise "
                 << r.worst_step_rise << ", above the start " << r.worst_rise
                 << ", largest return " << r.largest_return << ", energy lost " << r.loss
                 << " m g h0, " << balanced_steps(stepper) << " balanced steps" << std::endl;
@@ -219,7 +218,7 @@ TEST(EnergyStable, CubeOnTheGroundNeverGainsEnergy) {
   for (EnergyControl energy : {EnergyControl::kBounded, EnergyControl::kMonotone})
     for (double nu : {0.3, 0.49})
       for (double dt : {1e-3, 5e-3}) {
-        SCOPED_TRACE(name(energy, mass) + ", nu " + std::to_string(nu) + ", dt " +
+        SCOPED_TRACE(label(energy, mass) + ", nu " + std::to_string(nu) + ", dt " +
                      std::to_string(dt));
         const auto unit = [](const Eigen::Vector3d& y) -> Eigen::Vector3d {
           return (y.array() + 1) / 2;
@@ -238,7 +237,7 @@ TEST(EnergyStable, CubeOnTheGroundNeverGainsEnergy) {
         s.initialize(Vec::Zero(cube.positions.rows()), Vec::Zero(cube.positions.rows()));
         const Rest r = rest_on_fixed_ground(s, 2000, cube.a.mass * 10 * kDrop);
         expect_energy_bounds(r, energy);
-        std::cout << "cube, " << name(energy, mass) << ", nu " << nu << ", dt " << dt
+        std::cout << "cube, " << label(energy, mass) << ", nu " << nu << ", dt " << dt
                   << ": worst step rise " << r.worst_step_rise << ", above the start "
                   << r.worst_rise << ", energy lost " << r.loss << " m g h0" << std::endl;
       }
@@ -269,7 +268,7 @@ TEST(EnergyStableMassless, MovingGroundAddsExactlyItsWork) {
   // nothing else, in every step.
   for (EnergyControl energy : {EnergyControl::kBounded, EnergyControl::kMonotone})
     for (double nu : {0.3, 0.49}) {
-      SCOPED_TRACE(name(energy) + ", nu " + std::to_string(nu));
+      SCOPED_TRACE(label(energy) + ", nu " + std::to_string(nu));
       Block b(12, nu, 1e-3, energy);
       const Obstacle rest = b.s.stepper->obstacle();
       const double A = 2 * kDrop, w = 2 * M_PI / 0.25;
@@ -292,7 +291,7 @@ TEST(EnergyStable, VaryingLoadAddsExactlyItsWork) {
   for (Mass mass : {Mass::kMassless, Mass::kConsistent})
   for (EnergyControl energy : {EnergyControl::kBounded, EnergyControl::kMonotone})
     for (double nu : {0.3, 0.49}) {
-      SCOPED_TRACE(name(energy, mass) + ", nu " + std::to_string(nu));
+      SCOPED_TRACE(label(energy, mass) + ", nu " + std::to_string(nu));
       Block b(12, nu, 1e-3, energy, mass);
       const Obstacle ground = b.s.stepper->obstacle();
       const Vec F0 = b.s.F_int;

@@ -15,6 +15,7 @@
 
 #include "api/solver.hpp"
 #include "base/errors.hpp"
+#include "test_problems.hpp"
 #include "test_util.hpp"
 #include "time/generalized_alpha.hpp"
 
@@ -77,9 +78,9 @@ struct Oscillator {
     contact.dofs = {2};
     contact.normals = {1.0};
     contact.gaps = {1e6};
-    options.mass = mass;
+    options.mass = nbm_test::mass_named(mass);
     if (mass == "redistributed") options.positions = {0.0, 2.0, 1.0};
-    options.scheme = scheme;
+    options.scheme = nbm_test::scheme_named(scheme);
     options.rho_inf = rho_inf;
     options.dt = dt;
   }
@@ -262,20 +263,20 @@ TEST(GeneralizedAlphaOptions, BadValuesAreNamed) {
   Oscillator o("generalized-alpha", 1.5, "consistent", 0.01);
   expect_throw_with<nbm::InputError>([&] { Solver(o.M, o.K, o.contact, o.options); },
                                      {"rhoInf", "[0, 1]"});
-  o.options.scheme = "hht-alpha";
+  o.options.scheme = nbm::TimeScheme::kHhtAlpha;
   o.options.rho_inf = 0.4;
   expect_throw_with<nbm::InputError>([&] { Solver(o.M, o.K, o.contact, o.options); },
                                      {"rhoInf", "[1/2, 1]"});
-  o.options.scheme = "newmark";
+  o.options.scheme = nbm::TimeScheme::kNewmark;
   o.options.rho_inf = 0.8;
   expect_throw_with<nbm::InputError>([&] { Solver(o.M, o.K, o.contact, o.options); },
                                      {"rhoInf", "given with scheme \"newmark\""});
-  o.options.scheme = "generalized-alpha";
+  o.options.scheme = nbm::TimeScheme::kGeneralizedAlpha;
   o.options.beta = 0.3;
   expect_throw_with<nbm::InputError>([&] { Solver(o.M, o.K, o.contact, o.options); },
                                      {"beta", "rhoInf"});
   o.options.beta.reset();
-  o.options.energy = "bounded";
+  o.options.energy = nbm::EnergyControl::kBounded;
   expect_throw_with<nbm::InputError>([&] { Solver(o.M, o.K, o.contact, o.options); },
                                      {"energy"});
 }

@@ -89,7 +89,7 @@ TEST(MoreauJean, OptionsAreChecked) {
   nbm_test::expect_throw_with<nbm::InputError>(
       [&] { nbm::Solver(nbm_test::to_coo(a.M), nbm_test::to_coo(a.K), nbm_test::ground_contact(), o); },
       {"restitution", "moreau-jean"});
-  o.scheme = "moreau-jean";
+  o.scheme = nbm::TimeScheme::kMoreauJean;
   o.beta = 0.3;
   nbm_test::expect_throw_with<nbm::InputError>(
       [&] { nbm::Solver(nbm_test::to_coo(a.M), nbm_test::to_coo(a.K), nbm_test::ground_contact(), o); },

@@ -9,9 +9,27 @@
 #include <cmath>
 #include <vector>
 
+#include <stdexcept>
+#include <string>
+
 #include "api/solver.hpp"
 
 namespace nbm_test {
+
+// The core's options are typed; tests parameterized by the front end's names
+// ("explicit", "redistributed", ...) read them through nbm::name.
+inline nbm::TimeScheme scheme_named(const std::string& n) {
+  for (nbm::TimeScheme s : {nbm::TimeScheme::kNewmark, nbm::TimeScheme::kGeneralizedAlpha,
+                            nbm::TimeScheme::kHhtAlpha, nbm::TimeScheme::kExplicit,
+                            nbm::TimeScheme::kMoreauJean})
+    if (n == nbm::name(s)) return s;
+  throw std::invalid_argument("no scheme " + n);
+}
+inline nbm::MassTreatment mass_named(const std::string& n) {
+  for (nbm::MassTreatment m : {nbm::MassTreatment::kConsistent, nbm::MassTreatment::kRedistributed})
+    if (n == nbm::name(m)) return m;
+  throw std::invalid_argument("no mass treatment " + n);
+}
 
 using Sparse = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 using Trip = Eigen::Triplet<double, int>;

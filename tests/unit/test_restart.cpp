@@ -188,8 +188,8 @@ SolverRun plate_run(double angle, const std::string& mass = "consistent",
   r.F = nbm_test::to_std(a.F);
   r.contact = nbm_test::bottom_contact(p, 0.02);
   r.options.dt = 1e-3;
-  r.options.scheme = scheme;
-  r.options.mass = mass;
+  r.options.scheme = nbm_test::scheme_named(scheme);
+  r.options.mass = nbm_test::mass_named(mass);
   if (mass == "redistributed") {
     const Eigen::MatrixXd X = nbm_test::node_positions(p);
     for (int i = 0; i < X.rows(); ++i)

@@ -17,9 +17,7 @@ Vector vector_of(const std::vector<double>& x) { return Eigen::Map<const Vector>
 // Checks the options that concern the model alone: the mass treatment and
 // what goes with it.
 void check_options(const ModelOptions& options) {
-  if (options.mass == "redistributed") return;
-  if (options.mass != "consistent")
-    throw InputError("mass: \"" + options.mass + "\", expected \"consistent\" or \"redistributed\"");
+  if (options.mass == MassTreatment::kRedistributed) return;
   if (!options.positions.empty())
     throw InputError("positions: given with mass = \"consistent\"; they are used only by "
                      "mass = \"redistributed\"");
@@ -118,6 +116,10 @@ void build_problem(Model::Data& data, const ContactDescription& contact) {
 
 }  // namespace
 
+const char* name(MassTreatment mass) {
+  return mass == MassTreatment::kRedistributed ? "redistributed" : "consistent";
+}
+
 void check_obstacle(const ObstacleDescription& obstacle) { make_obstacle(obstacle); }
 
 double obstacle_distance(const ObstacleDescription& obstacle, const std::vector<double>& x,
@@ -151,7 +153,7 @@ Model::Model(const CooMatrix& M, const CooMatrix& K, const ContactDescription& c
     d.damping_user.C_user = to_sparse(options.damping, "damping matrix");
   check_damping(d.damping_user, d.K_user.rows());
   if (options.obstacle) d.obstacle = make_obstacle(*options.obstacle);
-  if (options.mass == "redistributed") {
+  if (options.mass == MassTreatment::kRedistributed) {
     if (contact.gaps.empty())
       throw InputError("contact set is empty: expected at least one contact node (gaps)");
     d.positions = positions_of(options, d.K_user.rows());

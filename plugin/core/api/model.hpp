@@ -64,6 +64,14 @@ struct ContactDescription {
   std::vector<double> gaps;
 };
 
+/// How the contact dofs' mass is treated (method.md §4).
+enum class MassTreatment {
+  kConsistent,     ///< the paper's NBM: the contact nodes keep their mass
+  kRedistributed,  ///< massless boundary: their mass moved to interior dofs
+};
+/// The name front ends and messages use: "consistent", "redistributed".
+const char* name(MassTreatment mass);
+
 struct ModelOptions {
   /// Dirichlet dofs (held at zero; any order, repeats allowed). They are the
   /// only Dirichlet conditions the core knows: their rows and columns of M
@@ -72,11 +80,11 @@ struct ModelOptions {
   /// plugin/freefem/dirichlet.hpp); a huge diagonal on a dof not listed here
   /// is just a stiff (or heavy) entry.
   std::vector<long> fixed;
-  /// "consistent" (the paper's NBM: contact nodes keep their mass) or
-  /// "redistributed" (massless boundary, method.md §4: energy conserving;
-  /// implicit scheme only). Redistribution needs `positions`: for every dof
-  /// the d coordinates of its node, dof-major (size n_dofs * d, d = 1..3).
-  std::string mass = "consistent";
+  /// Consistent (the paper's NBM) or redistributed (massless boundary,
+  /// method.md §4: energy conserving; implicit schemes only).
+  /// Redistribution needs `positions`: for every dof the d coordinates of
+  /// its node, dof-major (size n_dofs * d, d = 1..3).
+  MassTreatment mass = MassTreatment::kConsistent;
   std::vector<double> positions;
   /// Viscous damping (method.md §9), C = rayleigh_mass M + rayleigh_stiffness K
   /// + damping: Rayleigh coefficients (finite, >= 0; M the scheme's mass:

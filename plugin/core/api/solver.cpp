@@ -28,54 +28,49 @@ Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   return Eigen::Map<const Vector>(x.data(), n);
 }
 
-// Checks the scheme's options and how they go with the model's.
 // The implicit NBM schemes of Newmark's family (implicit_scheme.hpp).
-bool implicit_nbm(const std::string& scheme) {
-  return scheme == "newmark" || scheme == "generalized-alpha" || scheme == "hht-alpha";
+bool implicit_nbm(TimeScheme scheme) {
+  return scheme == TimeScheme::kNewmark || scheme == TimeScheme::kGeneralizedAlpha ||
+         scheme == TimeScheme::kHhtAlpha;
 }
 
+std::string quoted(const char* name) { return std::string("\"") + name + "\""; }
+
+// Checks the scheme's options and how they go with the model's.
 void check_options(const SchemeOptions& options, const ModelOptions& model) {
-  const std::string& scheme = options.scheme;
-  if (!implicit_nbm(scheme) && scheme != "explicit" && scheme != "moreau-jean")
-    throw InputError("scheme: \"" + scheme +
-                     "\", expected \"newmark\", \"generalized-alpha\", \"hht-alpha\", "
-                     "\"explicit\" or \"moreau-jean\"");
-  if (scheme != "newmark")
-    for (const auto& [value, name] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
+  const TimeScheme scheme = options.scheme;
+  const std::string with_scheme = "given with scheme " + quoted(name(scheme));
+  const bool alpha = scheme == TimeScheme::kGeneralizedAlpha || scheme == TimeScheme::kHhtAlpha;
+  if (scheme != TimeScheme::kNewmark)
+    for (const auto& [value, option] : {std::pair{&options.beta, "beta"}, {&options.gamma, "gamma"}})
       if (value->has_value())
-        throw InputError(std::string(name) + ": given with scheme \"" + scheme + "\"" +
-                         (scheme == "explicit"
+        throw InputError(std::string(option) + ": " + with_scheme +
+                         (scheme == TimeScheme::kExplicit
                               ? ", which is central differences (beta = 0, gamma = 1/2); "
                                 "Newmark parameters need scheme \"newmark\""
-                          : scheme == "moreau-jean"
+                          : scheme == TimeScheme::kMoreauJean
                               ? ", whose theta = 1/2 is fixed"
                               : ", whose parameters follow from rhoInf (method.md §5.4)"));
-  if (options.rho_inf.has_value() && scheme != "generalized-alpha" && scheme != "hht-alpha")
-    throw InputError("rhoInf: given with scheme \"" + scheme +
-                     "\"; it is the spectral radius at infinity of schemes "
+  if (options.rho_inf.has_value() && !alpha)
+    throw InputError("rhoInf: " + with_scheme +
+                     "; it is the spectral radius at infinity of schemes "
                      "\"generalized-alpha\" and \"hht-alpha\"");
-  if (options.restitution.has_value() && scheme != "moreau-jean")
-    throw InputError("restitution: given with scheme \"" + scheme +
-                     "\"; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
-  if (model.obstacle && scheme != "newmark")
+  if (options.restitution.has_value() && scheme != TimeScheme::kMoreauJean)
+    throw InputError("restitution: " + with_scheme +
+                     "; it is the coefficient of Newton's law of scheme \"moreau-jean\"");
+  if (model.obstacle && scheme != TimeScheme::kNewmark)
     throw InputError("obstacle: needs mass = \"redistributed\" and scheme \"newmark\" (the "
                      "contact frame follows the body only with massless contact nodes, and "
                      "with Newmark's scheme)");
-  if (options.energy) {
-    const std::string& energy = *options.energy;
-    if (energy != "bounded" && energy != "monotone" && energy != "none")
-      throw InputError("energy: \"" + energy +
-                       "\", expected \"bounded\", \"monotone\" or \"none\"");
-    if (energy != "none" &&
-        (scheme != "newmark" || model.obstacle || options.beta.value_or(0.25) != 0.25 ||
-         options.gamma.value_or(0.5) != 0.5 || model.rayleigh_stiffness != 0 ||
-         (model.mass == "consistent" && model.damped())))
-      throw InputError("energy: given without the energy-stable step it controls, which needs "
-                       "scheme \"newmark\" with beta = 1/4 and gamma = 1/2, no rayleighK and "
-                       "no obstacle, and with mass = \"consistent\" no damping at all "
-                       "(method.md §5.1, §5.3)");
-  }
-  if (model.mass == "redistributed" && !implicit_nbm(scheme))
+  if (options.energy && *options.energy != EnergyControl::kNone &&
+      (scheme != TimeScheme::kNewmark || model.obstacle || options.beta.value_or(0.25) != 0.25 ||
+       options.gamma.value_or(0.5) != 0.5 || model.rayleigh_stiffness != 0 ||
+       (model.mass == MassTreatment::kConsistent && model.damped())))
+    throw InputError("energy: given without the energy-stable step it controls, which needs "
+                     "scheme \"newmark\" with beta = 1/4 and gamma = 1/2, no rayleighK and "
+                     "no obstacle, and with mass = \"consistent\" no damping at all "
+                     "(method.md §5.1, §5.3)");
+  if (model.mass == MassTreatment::kRedistributed && !implicit_nbm(scheme))
     throw InputError("mass: \"redistributed\" needs scheme \"newmark\", "
                      "\"generalized-alpha\" or \"hht-alpha\" (the massless boundary has no "
                      "explicit or Moreau-Jean variant)");
@@ -84,21 +79,19 @@ void check_options(const SchemeOptions& options, const ModelOptions& model) {
 // The implicit scheme's parameters (options checked).
 SchemeParameters scheme_parameters(const SchemeOptions& options) {
   constexpr double kDefaultRhoInf = 0.8;
-  if (options.scheme == "generalized-alpha")
+  if (options.scheme == TimeScheme::kGeneralizedAlpha)
     return generalized_alpha(options.rho_inf.value_or(kDefaultRhoInf));
-  if (options.scheme == "hht-alpha") return hht_alpha(options.rho_inf.value_or(kDefaultRhoInf));
+  if (options.scheme == TimeScheme::kHhtAlpha)
+    return hht_alpha(options.rho_inf.value_or(kDefaultRhoInf));
   const SchemeParameters defaults;
   return SchemeParameters::newmark(options.beta.value_or(defaults.beta),
                                    options.gamma.value_or(defaults.gamma));
 }
 
-// What the energy-stable step bounds (option energy, checked): "bounded" by
+// What the energy-stable step bounds (option energy, checked): kBounded by
 // default where the step exists (method.md §5.1, §5.3).
 EnergyControl energy_control(const SchemeOptions& options) {
-  const std::string energy = options.energy.value_or("bounded");
-  return energy == "monotone" ? EnergyControl::kMonotone
-         : energy == "none"   ? EnergyControl::kNone
-                              : EnergyControl::kBounded;
+  return options.energy.value_or(EnergyControl::kBounded);
 }
 
 // The time scheme of the options on a model (options checked).
@@ -125,7 +118,7 @@ std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model:
     parameters.energy = energy_control(options);
     return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, model.damping);
   }
-  if (options.scheme == "explicit") {
+  if (options.scheme == TimeScheme::kExplicit) {
     auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, model.damping);
     critical_dt = cd->critical_dt();
     return cd;
@@ -135,6 +128,17 @@ std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model:
 }
 
 }  // namespace
+
+const char* name(TimeScheme scheme) {
+  switch (scheme) {
+    case TimeScheme::kNewmark: return "newmark";
+    case TimeScheme::kGeneralizedAlpha: return "generalized-alpha";
+    case TimeScheme::kHhtAlpha: return "hht-alpha";
+    case TimeScheme::kExplicit: return "explicit";
+    case TimeScheme::kMoreauJean: return "moreau-jean";
+  }
+  return "?";
+}
 
 struct Solver::Impl {
   SolverOptions options;  // the model's and the scheme's
@@ -380,7 +384,7 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
     impl_->build(saved.model->with_contacts(contact));
     impl_->start(uu, vv, F, t, true);
     impl_->stepper->carry_over(*saved.stepper);
-    if (impl_->options.scheme == "moreau-jean") {
+    if (impl_->options.scheme == TimeScheme::kMoreauJean) {
       const Stepper& st = *impl_->stepper;
       const Vector gap = st.gaps();
       const double u_scale = st.u().cwiseAbs().maxCoeff();

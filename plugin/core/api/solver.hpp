@@ -9,32 +9,41 @@
 #include <vector>
 
 #include "api/model.hpp"
+#include "time/energy_control.hpp"
 
 namespace nbm {
+
+/// The time scheme (method.md §5).
+enum class TimeScheme {
+  kNewmark,           ///< implicit NBM, Newmark's family (beta, gamma)
+  kGeneralizedAlpha,  ///< implicit NBM, Chung and Hulbert's (rho_inf; §5.4)
+  kHhtAlpha,          ///< implicit NBM, Hilber, Hughes and Taylor's (rho_inf; §5.4)
+  kExplicit,          ///< central differences NBM (lumped mass)
+  kMoreauJean,        ///< the Newton impact law peer (contact dofs not slaved)
+};
+/// The name front ends and messages use: "newmark", "generalized-alpha",
+/// "hht-alpha", "explicit", "moreau-jean".
+const char* name(TimeScheme scheme);
 
 /// How the model is advanced in time: the scheme and its parameters.
 struct SchemeOptions {
   double dt = 0;
-  /// "newmark" (implicit NBM), "generalized-alpha" or "hht-alpha" (implicit
-  /// NBM, numerically dissipative; method.md §5.4), "explicit" (central
-  /// differences NBM) or "moreau-jean" (the Newton impact law peer, contact
-  /// dofs not slaved).
-  std::string scheme = "newmark";
-  /// Newmark parameters, scheme "newmark" only (default 1/4, 1/2: average
+  TimeScheme scheme = TimeScheme::kNewmark;
+  /// Newmark parameters, scheme kNewmark only (default 1/4, 1/2: average
   /// acceleration); setting them with another scheme is an error.
   std::optional<double> beta, gamma;
-  /// Spectral radius at infinite frequency of schemes "generalized-alpha"
-  /// (in [0, 1], default 0.8) and "hht-alpha" (in [1/2, 1], default 0.8).
+  /// Spectral radius at infinite frequency of schemes kGeneralizedAlpha
+  /// (in [0, 1], default 0.8) and kHhtAlpha (in [1/2, 1], default 0.8).
   std::optional<double> rho_inf;
-  /// What the energy-stable step bounds (method.md §5.1, §5.3): "bounded"
+  /// What the energy-stable step bounds (method.md §5.1, §5.3): kBounded
   /// (the default: the energy never exceeds its start plus the work done on
-  /// the body; what touchdowns lose a later lift-off may return), "monotone"
-  /// (no step raises it) or "none" (the plain step). Needs scheme "newmark"
+  /// the body; what touchdowns lose a later lift-off may return), kMonotone
+  /// (no step raises it) or kNone (the plain step). Needs scheme kNewmark
   /// with beta = 1/4, gamma = 1/2, no rayleigh_stiffness and no obstacle, and
-  /// with mass "consistent" no damping at all; the default is "none" where
-  /// the step does not exist.
-  std::optional<std::string> energy;
-  /// Restitution coefficient of scheme "moreau-jean", in [0, 1] (default 0).
+  /// with mass kConsistent no damping at all; the default is kNone where the
+  /// step does not exist.
+  std::optional<EnergyControl> energy;
+  /// Restitution coefficient of scheme kMoreauJean, in [0, 1] (default 0).
   std::optional<double> restitution;
 };
 

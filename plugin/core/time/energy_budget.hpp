@@ -9,19 +9,9 @@
 #include <functional>
 
 #include "base/types.hpp"
+#include "time/energy_control.hpp"
 
 namespace nbm {
-
-/// What an energy-controlled step bounds.
-enum class EnergyControl {
-  /// E_n + D_n - W_n never above its start: a step may return what earlier
-  /// switching steps lost, no more.
-  kBounded,
-  /// E_{n+1} + D_{n+1} - W_{n+1} <= E_n + D_n - W_n in every step.
-  kMonotone,
-  /// Nothing bounded: the scheme's own step (the trapezoidal contact forces).
-  kNone,
-};
 
 /// The returnable loss R of method.md §5.1: B + R never rises in a step (B
 /// the balance E + D - W); R = 0 with kMonotone. Exact-restart state.
