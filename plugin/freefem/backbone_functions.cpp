@@ -21,7 +21,8 @@
 // grazing, fold-frequency, fold-energy, stability; user_backbone.hpp). Returns
 // the number of orbits. The last two orbits become the object's last orbits:
 // the nbmOrbit* functions read the last one (nbmOrbitState, ...), and
-// nbmContinueOrbit goes on along the backbone from them.
+// nbmContinueOrbit goes on along the backbone from them; nbmSelectOrbit
+// picks any other by index (orbit_functions.cpp).
 #include <fstream>
 #include <iostream>
 
@@ -67,10 +68,11 @@ class Backbone : public E_F0mps {
              "periodicity,probe_amplitude,probe_min,probe_max,events\n";
     }
     nbm::BackboneReport r = guarded(fn, [&] { return nbm::backbone(model.problem(), FF, j, o); });
-    // Its last two orbits become the object's: nbmOrbit* read the last one,
-    // nbmContinueOrbit goes on along the backbone.
-    if (r.previous.model) h->remember(std::move(r.previous));
-    h->remember(std::move(r.last));
+    // Its orbits become the object's curve (nbmSelectOrbit), its last two
+    // the last orbits: nbmOrbit* read the last one, nbmContinueOrbit goes on
+    // along the backbone.
+    guarded(fn, [&] { h->select(*r.orbits, r.orbits->size() - 1); });
+    h->set_curve(r.orbits, nullptr);
     std::cout << r.summary;
     const long n = static_cast<long>(r.points.size());
     constexpr int columns = 12;

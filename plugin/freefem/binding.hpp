@@ -20,30 +20,53 @@ using namespace Fem2D;
 namespace nbm_binding {
 
 // The script-side model (NBMModel Mo(M, K, cdofs, normals, gaps, ...)): the
-// structure, shared with the NBM objects built from it, and the two last
-// periodic orbits computed on it (continuation steps from them). Every
+// structure, shared with the NBM objects built from it, the two last
+// periodic orbits computed on it (continuation steps from them) and the
+// orbits of its last backbone or response curve (nbmSelectOrbit). Every
 // periodic call takes one; an NBM object passes as its model (a FreeFEM
 // cast, nbm_plugin.cpp).
 struct ModelHandle {
+  using Curve = std::shared_ptr<const nbm::OrbitSequence>;
   std::shared_ptr<const nbm::Model>* model;  // null until constructed
   nbm::OrbitReport* orbit;     // the last periodic orbit (orbit_functions.cpp)
   nbm::OrbitReport* previous;  // the one before
+  Curve* curve;                // the last backbone's or response curve's orbits
+  Curve* doubled;              // its period-doubled branch's (doubling = true)
   void init() {
     model = nullptr;
     orbit = nullptr;
     previous = nullptr;
+    curve = doubled = nullptr;
   }
   /// Drops the orbits (they refer to the model's contact problem).
   void forget_orbits() {
     delete orbit;
     delete previous;
     orbit = previous = nullptr;
+    set_curve(nullptr, nullptr);
   }
   /// Makes `r` the last orbit; the last one becomes the previous one.
   void remember(nbm::OrbitReport&& r) {
     delete previous;
     previous = orbit;
     orbit = new nbm::OrbitReport(std::move(r));
+  }
+  /// Makes orbit k of `c` the last orbit and orbit k - 1 the previous one
+  /// (none for k = 0): nbmContinueOrbit goes on along a backbone from there.
+  void select(const nbm::OrbitSequence& c, std::size_t k) {
+    if (k > 0) remember(c.report(k - 1));
+    remember(c.report(k));
+    if (k == 0) {
+      delete previous;
+      previous = nullptr;
+    }
+  }
+  /// The orbits nbmSelectOrbit picks from (null: none).
+  void set_curve(Curve c, Curve d) {
+    delete curve;
+    delete doubled;
+    curve = c ? new Curve(std::move(c)) : nullptr;
+    doubled = d ? new Curve(std::move(d)) : nullptr;
   }
   /// Makes `m` the model of the handle; the orbits of the last one go.
   void set_model(std::shared_ptr<const nbm::Model> m) {

@@ -4,7 +4,8 @@
 //
 //   real T = nbmPeriodicOrbit(S, u, v, T0, F,            // guess (u, v, T0), load F
 //              method = "shooting",                      // or "harmonic-balance"
-//              probe = dof, condition = "displacement",  // or "energy", "period"
+//              probe = dof,                              // amplitude of this dof
+//              phase = dof, condition = "displacement",  // or "energy", "period"
 //              amplitude = a,                            // default: the guess's
 //              half = true,                              // shooting from a state at rest
 //              harmonics = 20, cosine = true,            // harmonic balance
@@ -82,6 +83,13 @@
 //   // orbit (subharmonic 2m). No period doubling: an ExecError.
 //   real a = nbmOrbitAmplitude(S);    // (max - min) / 2 of u[probe] over a period
 //   nbmOrbitProbe(S, r);              // probe dof, min, max, largest total energy
+//   // (every orbit: probe = the dof whose amplitude is reported, in every call).
+//   real T = nbmSelectOrbit(S, k, u, v, doubled = false);
+//   // orbit k (0: the first point) of the last backbone or response curve
+//   // (doubled = true: of its period-doubled branch) becomes the last orbit,
+//   // orbit k - 1 the previous one; u, v get its state at t = 0, as after
+//   // nbmPeriodicOrbit: every nbmOrbit* accessor reads it, time integration
+//   // can start from it, nbmContinueOrbit goes on along a backbone from it.
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -100,18 +108,23 @@ const nbm::OrbitReport& orbit_of(ModelHandle* h, const char* function) {
   return *h->orbit;
 }
 
-// Makes `report` the last orbit of h (the last one becomes the previous
-// one) and copies its initial state to u, v; returns its period.
-double keep(ModelHandle* h, nbm::OrbitReport&& report, KN<double>* u, KN<double>* v) {
-  h->remember(std::move(report));
+// Copies the initial state of the last orbit of h to u, v; returns its period.
+double keep_state(ModelHandle* h, KN<double>* u, KN<double>* v) {
   assign(u, h->orbit->u0);
   assign(v, h->orbit->v0);
   return h->orbit->period;
 }
 
+// Makes `report` the last orbit of h (the last one becomes the previous
+// one) and copies its initial state to u, v; returns its period.
+double keep(ModelHandle* h, nbm::OrbitReport&& report, KN<double>* u, KN<double>* v) {
+  h->remember(std::move(report));
+  return keep_state(h, u, v);
+}
+
 class PeriodicOrbit : public E_F0mps {
  public:
-  static const int n_name_param = 12;
+  static const int n_name_param = 13;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, u, v, T, F;
@@ -141,6 +154,7 @@ class PeriodicOrbit : public E_F0mps {
     if (nargs[9]) o.truncation_tolerance = GetAny<double>((*nargs[9])(s));
     if (nargs[10]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[10])(s)));
     if (nargs[11]) o.modes = static_cast<int>(GetAny<long>((*nargs[11])(s)));
+    if (nargs[12]) o.phase = GetAny<long>((*nargs[12])(s));
     const std::vector<double> uu = vector_of<double>(U, fn, "u");
     const std::vector<double> vv = vector_of<double>(V, fn, "v");
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
@@ -160,6 +174,7 @@ basicAC_F0::name_and_type PeriodicOrbit::name_param[] = {
     {"cosine", &typeid(bool)},      {"integration", &typeid(string*)},
     {"adaptive", &typeid(bool)},    {"truncation", &typeid(double)},
     {"iterations", &typeid(long)},  {"modes", &typeid(long)},
+    {"phase", &typeid(long)},
 };
 
 class PeriodicOrbitOp : public OneOperator {
@@ -375,8 +390,13 @@ class ForcedResponse : public ForcedCall<H> {
               << " events; " << response.stop_reason << std::endl;
     for (const auto& e : response.events) std::cout << "  " << e.description << std::endl;
     const long n = static_cast<long>(response.points.size());
+    // The points become the object's curve (nbmSelectOrbit); the last point
+    // (or, with doubling, the period-2m orbit) the last orbit.
+    guarded(fn, [&] { in.h->select(*response.orbits, n - 1); });
+    in.h->set_curve(response.orbits, response.doubling ? response.doubling->branch.orbits
+                                                       : nullptr);
     if (!response.doubling) {
-      keep(in.h, std::move(response.last), in.U, in.V);
+      keep_state(in.h, in.U, in.V);
       return SetAny<long>(n);
     }
     // Branch switching: the period-2m branch, and its first orbit as the last one.
@@ -413,17 +433,11 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
 };
 
-const nbm::OrbitReport& forced_of(ModelHandle* h, const char* function) {
-  const nbm::OrbitReport& o = orbit_of(h, function);
-  if (o.omega == 0)
-    fail(std::string(function) + ": the last orbit is not a forced orbit (nbmForcedOrbit)");
-  return o;
-}
 double orbit_amplitude(ModelHandle* const& h) {
-  return forced_of(h, "nbmOrbitAmplitude").amplitude;
+  return orbit_of(h, "nbmOrbitAmplitude").amplitude;
 }
 long orbit_probe(ModelHandle* const& h, KN<double>* const& r) {
-  const nbm::OrbitReport& o = forced_of(h, "nbmOrbitProbe");
+  const nbm::OrbitReport& o = orbit_of(h, "nbmOrbitProbe");
   assign(r, std::vector<double>{static_cast<double>(o.probe), o.probe_min, o.probe_max,
                                 o.energy_max});
   return o.probe;
@@ -504,6 +518,60 @@ long orbit_summary(ModelHandle* const& h, string* const& file) {
   return 0;
 }
 
+// nbmSelectOrbit(S, k, u, v, doubled = false): orbit k of the last curve.
+class SelectOrbit : public E_F0mps {
+ public:
+  static const int n_name_param = 1;
+  static basicAC_F0::name_and_type name_param[];
+  Expression nargs[n_name_param];
+  Expression handle, point, u, v;
+
+  SelectOrbit(const basicAC_F0& args, const Expression (&e)[4])
+      : handle(e[0]), point(e[1]), u(e[2]), v(e[3]) {
+    args.SetNameParam(n_name_param, name_param, nargs);
+  }
+
+  AnyType operator()(Stack s) const override {
+    const char* fn = "nbmSelectOrbit";
+    ModelHandle* h = GetAny<ModelHandle*>((*handle)(s));
+    model_of(h, fn);
+    KN<double>* U = GetAny<KN<double>*>((*u)(s));
+    KN<double>* V = GetAny<KN<double>*>((*v)(s));
+    if (U == V) fail(std::string(fn) + ": u and v must be different arrays");
+    const bool branch = nargs[0] && GetAny<bool>((*nargs[0])(s));
+    const ModelHandle::Curve* curve = branch ? h->doubled : h->curve;
+    if (!curve)
+      fail(std::string(fn) + (branch ? ": doubled: the last response curve has no period-doubled "
+                                       "branch (nbmForcedResponse with doubling = true)"
+                                     : ": no backbone or response curve computed yet (call "
+                                       "nbmBackbone or nbmForcedResponse first)"));
+    const long k = GetAny<long>((*point)(s));
+    const long n = static_cast<long>((*curve)->size());
+    if (k < 0 || k >= n)
+      fail(std::string(fn) + ": k: point " + std::to_string(k) + " out of range [0, " +
+           std::to_string(n) + ") (the points of the last " +
+           (branch ? "period-doubled branch" : "backbone or response curve") + ")");
+    const ModelHandle::Curve held = *curve;  // select may not drop what it reads
+    guarded(fn, [&] { h->select(*held, static_cast<std::size_t>(k)); });
+    return SetAny<double>(keep_state(h, U, V));
+  }
+  operator aType() const override { return atype<double>(); }
+};
+
+basicAC_F0::name_and_type SelectOrbit::name_param[] = {{"doubled", &typeid(bool)}};
+
+class SelectOrbitOp : public OneOperator {
+ public:
+  SelectOrbitOp()
+      : OneOperator(atype<double>(), atype<ModelHandle*>(), atype<long>(), atype<KN<double>*>(),
+                    atype<KN<double>*>()) {}
+  E_F0* code(const basicAC_F0& args) const override {
+    Expression e[4];
+    for (int k = 0; k < 4; ++k) e[k] = t[k]->CastTo(args[k]);
+    return new SelectOrbit(args, e);
+  }
+};
+
 }  // namespace
 
 void load_orbit_functions() {
@@ -515,6 +583,7 @@ void load_orbit_functions() {
   Global.Add("nbmForcedOrbit", "(", new ForcedOp<ForcedOrbit<R>, R, double>);
   Global.Add("nbmForcedResponse", "(", new ForcedOp<ForcedResponse<A>, A, long>);
   Global.Add("nbmForcedResponse", "(", new ForcedOp<ForcedResponse<R>, R, long>);
+  Global.Add("nbmSelectOrbit", "(", new SelectOrbitOp);
   Global.Add("nbmOrbitAmplitude", "(", new OneOperator1_<double, H>(orbit_amplitude));
   Global.Add("nbmOrbitProbe", "(", new OneOperator2_<long, H, R>(orbit_probe));
   Global.Add("nbmContinueOrbit", "(", new OneOperator4_<double, H, R, R, double>(continue_orbit));

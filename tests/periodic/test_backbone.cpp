@@ -368,6 +368,20 @@ TEST(UserBackbone, ReportsEveryPointOnTheBar) {
   }
   EXPECT_GT(r.points.back().switches, 0);
   EXPECT_GT(r.points.back().omega, r.points[0].omega);
+  // Every orbit by index: point k's monitors, and a state that the exact
+  // flow brings back after one period.
+  ASSERT_EQ(r.orbits->size(), r.points.size());
+  for (std::size_t k = 0; k < r.points.size(); ++k) {
+    const nbm::OrbitReport o = r.orbits->report(k);
+    EXPECT_EQ(o.period, r.points[k].period);
+    EXPECT_EQ(o.switches, r.points[k].switches);
+    EXPECT_EQ(o.probe, r.probe);
+    EXPECT_NEAR(o.amplitude, r.points[k].probe_amplitude, 1e-14 * o.amplitude);
+    std::vector<std::vector<double>> us, vs;
+    nbm::orbit_states(o, {o.period}, us, vs);
+    for (std::size_t i = 0; i < o.u0.size(); ++i) EXPECT_NEAR(us[0][i], o.u0[i], 1e-9 * bar.g);
+  }
+  expect_input_error([&] { r.orbits->report(r.points.size()); }, "point: 6 out of range [0, 6)");
   // The energy limit stops the backbone at the first orbit beyond it.
   o.max_energy = 0.5 * (r.points[2].energy + r.points[3].energy);
   const nbm::BackboneReport s = nbm::backbone(*problem, F, 0, o);

@@ -228,8 +228,20 @@ TEST(UserForcedOrbit, ResponseCurveOfTheLinearBarIsItsFrequencyResponse) {
     top = std::max(top, p.amplitude);
   }
   EXPECT_GT(top, 3 * curve.points.front().amplitude);  // it crossed the resonance (pi/2)
-  EXPECT_NEAR(curve.last.omega, 2.2, 1e-9);
-  EXPECT_NE(curve.last.summary.find("pseudo-arclength continuation in omega"), std::string::npos);
+  // Every point as an orbit, by index: the forced orbit at the point's
+  // frequency, whose probe amplitude is the closed form's too.
+  ASSERT_EQ(curve.orbits->size(), curve.points.size());
+  for (std::size_t k : {std::size_t{0}, curve.points.size() / 2, curve.points.size() - 1}) {
+    const nbm::OrbitReport o = curve.orbits->report(k);
+    const double ref = bar_response(b, curve.points[k].omega, b.o.probe);
+    EXPECT_EQ(o.omega, curve.points[k].omega);
+    EXPECT_NEAR(o.period, 2 * M_PI / o.omega, 1e-14 * o.period);
+    EXPECT_NEAR(o.amplitude, ref, 1e-4 * ref) << "point " << k;
+    EXPECT_LT(o.periodicity_residual, 1e-10);
+    EXPECT_NE(o.summary.find("pseudo-arclength continuation in omega (point " + std::to_string(k)),
+              std::string::npos);
+  }
+  EXPECT_THROW(curve.orbits->report(curve.points.size()), nbm::InputError);
   // The CSV: a header and a row per point.
   const std::string path = testing::TempDir() + "forced-response.csv";
   nbm::write_forced_response(curve, path);

@@ -59,6 +59,35 @@ TEST(UserOrbit, ShootingReportsTheOrbitOnUserDofs) {
   }
 }
 
+// probe is the reported dof in every call, the contact dof included; the
+// conditions stay on the interior dof (phase, or an interior probe).
+TEST(UserOrbit, ProbeReportsAnyDofAndPhaseCarriesTheConditions) {
+  UserBar b;
+  const auto interior = shoot_bar(b);
+  nbm::OrbitOptions o;
+  o.half_period = true;
+  o.probe = b.bar.N;  // the contact dof
+  o.phase = b.bar.N - 1;
+  const auto r = nbm::periodic_orbit(*b.problem, b.F, b.u, b.v, 3.7, o);
+  // The same orbit (same conditions), reported at the tip: it reaches the
+  // gap and no further (exact impenetrability), and rests at t = 0 at its
+  // other extreme.
+  EXPECT_EQ(r.period, interior.period);
+  EXPECT_EQ(r.u0, interior.u0);
+  EXPECT_EQ(r.probe, b.bar.N);
+  EXPECT_NEAR(r.probe_max, b.bar.g, 1e-12 * b.bar.g);
+  EXPECT_NEAR(r.probe_min, r.u0[b.bar.N], 1e-12 * b.bar.g);
+  EXPECT_NEAR(r.amplitude, 0.5 * (r.probe_max - r.probe_min), 1e-15 * b.bar.g);
+  EXPECT_EQ(interior.probe, b.bar.N - 1);
+  EXPECT_NE(r.summary.find("probe dof " + std::to_string(b.bar.N)), std::string::npos);
+  // Without probe: the dof of largest amplitude; the conditions' dof is
+  // then the guess's largest interior one.
+  o = {};
+  o.half_period = true;
+  const auto free_probe = nbm::periodic_orbit(*b.problem, b.F, b.u, b.v, 3.7, o);
+  EXPECT_GE(free_probe.amplitude, r.amplitude * (1 - 1e-12));
+}
+
 TEST(UserOrbit, HarmonicBalanceAndReducedBasisAgreeWithShooting) {
   UserBar b;
   const auto shot = shoot_bar(b);
@@ -107,8 +136,15 @@ TEST(UserOrbit, RejectsBadInputNamingTheArgument) {
   o.condition = "phase";
   expect_error(o, "condition:");
   o = {};
-  o.probe = b.bar.N;  // the contact dof
+  o.phase = b.bar.N;  // the contact dof: slaved, it cannot carry the conditions
+  expect_error(o, "phase:");
+  o = {};
+  o.probe = b.bar.N + 1;
   expect_error(o, "probe:");
+  o = {};
+  o.modes = 4;
+  o.phase = 3;
+  expect_error(o, "phase:");
   o = {};
   o.modes = -2;
   expect_error(o, "modes:");

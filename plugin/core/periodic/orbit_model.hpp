@@ -58,6 +58,8 @@ struct OrbitModel {
 /// or non-finite entries.
 Vector user_vector(const std::vector<double>& x, Index n, const std::string& name);
 std::vector<double> to_std(const Vector& x);
+/// Whether a user dof is one of the field's interior unknowns u_O.
+bool is_interior(const ContactProblem& p, const ReducedField& field, long dof);
 /// Position in u_O of a user dof; InputError naming `name` if it is out of
 /// range, fixed or the normal component of a contact node.
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
@@ -85,8 +87,10 @@ long amplitude_probe(const ContactProblem& problem, const OrbitSamples& s, long 
 /// in user coordinates (the slaved contact normal components left at zero).
 void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, OrbitReport& report);
 
-/// The report of an orbit found on `model`; `method` opens its summary.
+/// The report of an orbit found on `model`; `method` opens its summary. The
+/// orbit is sampled along the model's flow (its forced one, if any) for the
+/// amplitude of the user dof `probe` (-1: the dof of largest amplitude).
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
-                     OrbitReport report, const std::string& method);
+                     OrbitReport report, const std::string& method, long probe);
 
 }  // namespace nbm

@@ -81,9 +81,15 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   method << "method pseudo-arclength continuation from grazing along the backbone of mode "
          << mode << " (shooting, " << (options.half_period ? "half period" : "full period")
          << ", exact flow)\n";
-  const std::size_t n = b.points.size();
-  if (n > 1) r.previous = describe(model, b.points[n - 2].orbit, OrbitReport{}, method.str());
-  r.last = describe(std::move(model), b.points[n - 1].orbit, OrbitReport{}, method.str());
+  std::vector<PeriodicOrbit> orbits;
+  for (const BackbonePoint& p : b.points) orbits.push_back(p.orbit);
+  const std::size_t n = orbits.size();  // before orbits moves into the reporter
+  r.orbits = std::make_shared<const OrbitSequence>(
+      n, [model = std::shared_ptr<const OrbitModel>(std::move(model)),
+                      orbits = std::move(orbits), method = method.str(),
+                      probe = r.probe](std::size_t k) {
+        return describe(model, orbits[k], OrbitReport{}, method, probe);
+      });
   return r;
 }
 

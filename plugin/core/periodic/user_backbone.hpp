@@ -69,11 +69,10 @@ struct BackboneReport {
   std::vector<BackbonePointReport> points;
   std::string stop_reason;
   std::string summary;
-  /// The last orbit of the backbone and the one before (no model when the
-  /// backbone has one orbit only), as periodic_orbit reports them: their
-  /// states (orbit_states) and their family (continue_orbit goes on along
-  /// the backbone from them).
-  OrbitReport last, previous;
+  /// The orbits by index (orbits->report(k) is the orbit of points[k]), as
+  /// periodic_orbit reports them: their states (orbit_states), and their
+  /// family (continue_orbit goes on along the backbone from two of them).
+  std::shared_ptr<const OrbitSequence> orbits;
 };
 
 /// The backbone of mode `mode` (0: the lowest; modes of the system with

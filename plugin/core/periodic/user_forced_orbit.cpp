@@ -157,20 +157,9 @@ OrbitReport forced_report(std::shared_ptr<OrbitModel> model, const PeriodicOrbit
          << (o.damping.value.empty() ? "" : " and an assembled damping matrix") << ", "
          << harmonics << " harmonic(s) of the excitation\n"
          << method_line << "\n";
-  const OrbitSamples s = sample_orbit(*model, *model->forced, orbit);
-  report = describe(model, orbit, std::move(report), method.str());
+  report = describe(model, orbit, std::move(report), method.str(), o.probe);
   report.omega = omega;
   report.subharmonic = o.subharmonic;
-  report.energy_max = s.energy_max;
-  report.probe = amplitude_probe(model->problem, s, o.probe);
-  report.probe_min = s.lo(report.probe), report.probe_max = s.hi(report.probe);
-  report.amplitude = 0.5 * (report.probe_max - report.probe_min);
-  std::ostringstream probe;
-  probe.precision(12);
-  probe << "probe dof " << report.probe << ": amplitude " << report.amplitude << " (min "
-        << report.probe_min << ", max " << report.probe_max << ")\n"
-        << "largest total energy over the period " << report.energy_max << "\n";
-  report.summary += probe.str();
   return report;
 }
 
@@ -191,7 +180,7 @@ std::shared_ptr<OrbitModel> model_at(const ForcedSetup& f, const ForcedContinuat
 // The user-level response of a curve of continue_forced on the load of `f`
 // (whose amplitude factor 1 is `factor` times the user's): a row per point
 // (amplitude of `probe`, or -1: the dof of largest amplitude at the first
-// point), the events, the last point as an orbit report.
+// point), the events, the points as orbit reports.
 ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
                               const ForcedContinuationOptions& c, const ForcedOrbitOptions& o,
                               long probe, const std::string& parameter, double factor) {
@@ -234,18 +223,25 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
     }
     out.events.push_back(std::move(ev));
   }
-  // The last point as the orbit report (its flow: the last parameter).
-  const ForcedPoint& last = curve.points.back();
+  // The points as orbits, by index: each report follows the flow of its
+  // point's parameter (model_at).
   ForcedOrbitOptions lo = o;
   lo.probe = out.probe;
   lo.subharmonic = c.shooting.subharmonic;
-  std::ostringstream method;
-  method.precision(12);
-  method << "method pseudo-arclength continuation in " << parameter << " (last of "
-         << curve.points.size() << " points, amplitude factor " << factor * last.scale
-         << "): " << curve.stop_reason;
-  out.last = forced_report(model_at(f, c, last.parameter), last.orbit, lo, last.omega,
-                           f.load.harmonics(), method.str());
+  const std::size_t n = curve.points.size();
+  const double shown = factor;
+  out.orbits = std::make_shared<const OrbitSequence>(
+      n, [f, c, lo, parameter, shown, points = curve.points,
+          stop = curve.stop_reason](std::size_t k) {
+        const ForcedPoint& p = points[k];
+        std::ostringstream method;
+        method.precision(12);
+        method << "method pseudo-arclength continuation in " << parameter << " (point " << k
+               << " of " << points.size() << ", amplitude factor " << shown * p.scale
+               << "): " << stop;
+        return forced_report(model_at(f, c, p.parameter), p.orbit, lo, p.omega,
+                             f.load.harmonics(), method.str());
+      });
   return out;
 }
 

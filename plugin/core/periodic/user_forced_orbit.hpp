@@ -120,7 +120,9 @@ struct ForcedResponse {
   std::vector<ForcedResponseEvent> events;
   long probe = -1;  ///< the user dof of the amplitudes
   std::string stop_reason;
-  OrbitReport last;  ///< the last point as an orbit (nbmOrbit* accessors)
+  /// The points as orbits, by index (the nbmOrbit* accessors read the last
+  /// one after the call, any one after nbmSelectOrbit).
+  std::shared_ptr<const OrbitSequence> orbits;
   /// With ForcedResponseOptions::doubling: the switch and the period-2m branch.
   std::shared_ptr<const ForcedDoubling> doubling;
 };
@@ -134,7 +136,7 @@ struct ForcedDoubling {
   /// for the period-m one (forced_continuation.hpp, PeriodDoubledOrbit).
   double separation = 0;
   OrbitReport orbit;      ///< the period-2m orbit found (subharmonic 2m)
-  ForcedResponse branch;  ///< its continuation (points, events; `last`: its last point)
+  ForcedResponse branch;  ///< its continuation (points, events, orbits)
 };
 
 /// The response curve through the forced orbit of `orbit` (its omega,

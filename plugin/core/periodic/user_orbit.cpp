@@ -32,6 +32,12 @@ Vector user_vector(const std::vector<double>& x, Index n, const std::string& nam
 
 std::vector<double> to_std(const Vector& x) { return {x.data(), x.data() + x.size()}; }
 
+bool is_interior(const ContactProblem& p, const ReducedField& field, long dof) {
+  const Index internal = dof >= 0 && dof < p.n_dofs() ? p.internal_index(dof) : -1;
+  return internal >= 0 &&
+         std::binary_search(field.interior().begin(), field.interior().end(), internal);
+}
+
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
                         const std::string& name) {
   if (dof < 0 || dof >= p.n_dofs())
@@ -72,8 +78,8 @@ OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
 }
 
 void check_amplitude_probe(const ContactProblem& problem, long probe) {
-  if (probe < 0) return;
-  if (probe >= problem.n_dofs())
+  if (probe == -1) return;  // the dof of largest amplitude
+  if (probe < 0 || probe >= problem.n_dofs())
     throw InputError("probe: dof " + std::to_string(probe) + " out of range [0, " +
                      std::to_string(problem.n_dofs()) + ")");
   if (problem.internal_index(probe) < 0)
@@ -146,9 +152,10 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
                      " interior dofs; without a reduced basis the periodic-orbit solvers accept "
                      "at most " + std::to_string(periodic_max_dense_dofs) +
                      " (use modes = m for a reduced basis, or a coarser mesh)");
-  if (o.modes > 0 && o.probe >= 0)
-    throw InputError("probe: not available with modes > 0 (the phase and displacement "
+  if (o.modes > 0 && o.phase != -1)
+    throw InputError("phase: not available with modes > 0 (the phase and displacement "
                      "conditions then use the reduced coordinate of largest amplitude)");
+  check_amplitude_probe(problem, o.probe);
 
   auto model = std::make_shared<OrbitModel>(problem);
   model->F = problem.to_internal(FF);
@@ -159,8 +166,13 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
     model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
   const ReducedField& field = model->field();
   const Vector u0 = model->unknowns(uu), v0 = model->unknowns(vv);
+  // The dof of the phase and displacement conditions: phase, else the
+  // probe when it is interior (a contact dof's normal component is slaved,
+  // fixed by the interior, and cannot carry a condition), else the largest.
   Index probe = 0;
-  if (o.probe >= 0)
+  if (o.phase != -1)
+    probe = interior_position(problem, field, o.phase, "phase");
+  else if (o.probe >= 0 && o.modes == 0 && is_interior(problem, field, o.probe))
     probe = interior_position(problem, field, o.probe, "probe");
   else
     u0.cwiseAbs().maxCoeff(&probe);
@@ -191,7 +203,7 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
           << ", " << o.integration << " integration), H = " << r.harmonics << "\n"
           << "Galerkin residual " << r.residual << ", truncation estimate " << r.truncation << "\n";
   }
-  return describe(std::move(model), orbit, std::move(report), extra.str());
+  return describe(std::move(model), orbit, std::move(report), extra.str(), o.probe);
 }
 
 void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, OrbitReport& report) {
@@ -211,11 +223,21 @@ void report_series(const OrbitModel& model, const HarmonicBalanceResult& r, Orbi
 }
 
 OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbit& orbit,
-                     OrbitReport report, const std::string& method) {
+                     OrbitReport report, const std::string& method, long probe) {
   const ReducedField& field = model->field();
   const ContactProblem& problem = model->problem;
   std::ostringstream extra;
   extra << method;
+  const OrbitSamples samples = sample_orbit(*model, model->flow(), orbit);
+  report.probe = amplitude_probe(problem, samples, probe);
+  report.probe_min = samples.lo(report.probe), report.probe_max = samples.hi(report.probe);
+  report.amplitude = 0.5 * (report.probe_max - report.probe_min);
+  report.energy_max = samples.energy_max;
+  std::ostringstream amplitude;
+  amplitude.precision(12);
+  amplitude << "probe dof " << report.probe << ": amplitude " << report.amplitude << " (min "
+            << report.probe_min << ", max " << report.probe_max << ")\n"
+            << "largest total energy over the period " << report.energy_max << "\n";
   report.period = orbit.period;
   report.u0 = to_std(model->user(orbit.u0));
   report.v0 = to_std(model->user(orbit.u0, &orbit.v0));
@@ -253,7 +275,7 @@ OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbi
   report.summary = extra.str() + "boundary mass " +
                    (field.massless_boundary() ? "redistributed (massless boundary)"
                                               : "consistent (paper NBM)") +
-                   "\n" + summary(orbit);
+                   "\n" + summary(orbit) + amplitude.str();
   report.model = std::move(model);
   return report;
 }
@@ -293,7 +315,14 @@ OrbitReport continue_orbit(const OrbitReport& previous, const OrbitReport& last,
   std::ostringstream method;
   method << "method pseudo-arclength continuation, step " << c.step << " (shooting, "
          << (m.conditions.half_period ? "half period" : "full period") << ", exact flow)\n";
-  return describe(last.model, next, OrbitReport{}, method.str());
+  return describe(last.model, next, OrbitReport{}, method.str(), last.probe);
+}
+
+OrbitReport OrbitSequence::report(std::size_t k) const {
+  if (k >= size_)
+    throw InputError("point: " + std::to_string(k) + " out of range [0, " +
+                     std::to_string(size_) + ") (the points of the last curve)");
+  return reporter_(k);
 }
 
 void orbit_states(const OrbitReport& orbit, const std::vector<double>& times,

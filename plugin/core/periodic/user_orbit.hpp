@@ -3,6 +3,8 @@
 // FreeFEM types.
 #pragma once
 
+#include <cstddef>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -18,11 +20,17 @@ struct OrbitModel;
 
 struct OrbitOptions {
   std::string method = "shooting";  ///< "shooting" or "harmonic-balance"
-  /// User dof of the phase and displacement conditions: an interior dof
-  /// (not fixed, not the normal component of a contact node). -1: the
-  /// interior dof of largest |u| in the initial guess.
+  /// User dof whose amplitude over the period is reported (OrbitReport::
+  /// amplitude), as in every periodic call: any dof that is not fixed,
+  /// contact dofs included. -1: the dof of largest amplitude along the orbit.
   long probe = -1;
-  /// Which orbit of the family: "displacement" (u[probe](0) = amplitude),
+  /// User dof of the phase and displacement conditions: an interior dof
+  /// (not fixed, not the normal component of a contact node). -1: the probe
+  /// if it is interior, else the interior dof of largest |u| in the guess.
+  /// Not with a reduced basis (modes > 0), whose conditions use the reduced
+  /// coordinate of largest amplitude.
+  long phase = -1;
+  /// Which orbit of the family: "displacement" (u[phase](0) = amplitude),
   /// "energy" (total energy = amplitude) or "period" (period = amplitude).
   std::string condition = "displacement";
   double amplitude = std::numeric_limits<double>::quiet_NaN();  ///< NaN: the guess's
@@ -58,16 +66,34 @@ struct OrbitReport {
   /// model's reduced equations along the orbit (the reduction error), and
   /// the retained cutoff frequency times T / (2 pi).
   double reduction_residual = 0, cutoff_ratio = 0;
-  // Forced orbits only (user_forced_orbit.hpp):
-  double omega = 0;     ///< excitation frequency; 0 for an autonomous orbit
-  int subharmonic = 0;  ///< m: period = 2 pi m / omega
   long probe = -1;      ///< user dof of the amplitude below
   /// Extremes of u[probe] over one period (the exact flow sampled 512 times
   /// and at every switch), and amplitude = (max - min) / 2.
   double probe_min = 0, probe_max = 0, amplitude = 0;
   double energy_max = 0;  ///< largest total energy at those samples
+  // Forced orbits only (user_forced_orbit.hpp):
+  double omega = 0;     ///< excitation frequency; 0 for an autonomous orbit
+  int subharmonic = 0;  ///< m: period = 2 pi m / omega
   std::string summary;
   std::shared_ptr<const OrbitModel> model;  ///< for orbit_states
+};
+
+/// The orbits of a backbone or of a response curve by index (0: the first
+/// point), each reported as periodic_orbit and forced_orbit report theirs:
+/// state (orbit_states), period, multipliers, stability, probe amplitude.
+/// Reports are made on demand: each one samples its orbit over a period.
+class OrbitSequence {
+ public:
+  using Reporter = std::function<OrbitReport(std::size_t)>;
+  OrbitSequence(std::size_t size, Reporter reporter)
+      : size_(size), reporter_(std::move(reporter)) {}
+  std::size_t size() const { return size_; }
+  /// The report of orbit k; InputError naming "point" if k >= size().
+  OrbitReport report(std::size_t k) const;
+
+ private:
+  std::size_t size_;
+  Reporter reporter_;
 };
 
 /// Computes a periodic orbit of the reduced NBM equations of `problem`
