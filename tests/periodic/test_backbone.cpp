@@ -8,10 +8,10 @@
 #include <functional>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 
 #include "bars.hpp"
 #include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "oscillators.hpp"  // name_word
 #include "periodic/backbone.hpp"
 #include "periodic/user_backbone.hpp"
@@ -58,9 +58,9 @@ struct OpenSystem {
     for (int i = 0; i < 4; ++i) P(O[i], i) = 1;
     for (int r = 0; r < 2; ++r) P.row(C[r]) = A.row(r);
     const Matrix MS = P.transpose() * c.M * P, KS = P.transpose() * c.K * P;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(KS, MS);
-    omega = eig.eigenvalues().cwiseSqrt();
-    modes = eig.eigenvectors();
+    const nbm::SymmetricEigen eig = nbm::generalized_symmetric_eigen(KS, MS);
+    omega = eig.values.cwiseSqrt();
+    modes = eig.vectors;
     // The static state with open contacts: K x = F on every dof.
     const Vector x = c.K.ldlt().solve(c.F);
     static_u = x(O);

@@ -2,11 +2,11 @@
 // below grazing, homogeneity, energy and Floquet structure.
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <cmath>
 
 #include "bars.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "periodic/exact_flow.hpp"
 #include "periodic/shooting.hpp"
 
@@ -53,11 +53,11 @@ TEST(BarOrbits, BelowGrazingThePeriodIsTheLinearFiniteElementOne) {
     Matrix P(N, N - 1);
     P.topRows(N - 1).setIdentity();
     P.row(N - 1) = -K.row(N - 1).head(N - 1) / K(N - 1, N - 1);
-    Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(P.transpose() * K * P,
-                                                         P.transpose() * M * P);
-    const double T1 = 2 * M_PI / std::sqrt(eig.eigenvalues()(0));
+    const nbm::SymmetricEigen eig =
+        nbm::generalized_symmetric_eigen(P.transpose() * K * P, P.transpose() * M * P);
+    const double T1 = 2 * M_PI / std::sqrt(eig.values(0));
     // First mode, tip at 60% of the gap, on the far side.
-    Vector u0 = eig.eigenvectors().col(0);
+    Vector u0 = eig.vectors.col(0);
     u0 *= -0.6 * bar.g / std::abs((P * u0)(N - 1));
     nbm::ShootingOptions o;
     o.probe = N - 2;

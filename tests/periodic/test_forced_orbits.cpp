@@ -11,11 +11,11 @@
 #include <complex>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 
 #include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
 #include "forced_models.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "oscillators.hpp"
 #include "periodic/forced_orbit.hpp"
 #include "periodic/periodic_orbit.hpp"
@@ -83,7 +83,7 @@ TEST(ForcedOrbit, LinearLimitIsTheFrequencyResponseOfTheDampedModel) {
       A.topRightCorner(n, n) = Matrix::Identity(n, n);
       A.bottomLeftCorner(n, n) = -Mr.inverse() * Kr;
       A.bottomRightCorner(n, n) = -Mr.inverse() * Cr;
-      const Eigen::VectorXcd lambda = Eigen::EigenSolver<Matrix>(A).eigenvalues();
+      const Eigen::VectorXcd lambda = nbm::general_eigen(A, false).values;
       std::vector<double> expected, got;
       for (Index j = 0; j < 2 * n; ++j)
         expected.push_back(std::exp(lambda(j).real() * orbit.period));
@@ -175,10 +175,10 @@ TEST(ForcedOrbit, AnOrbitFlaggedUnstableIsLeftByTimeIntegration) {
   ASSERT_TRUE(small.switches.empty());
   ASSERT_FALSE(large.switches.empty());
 
-  Eigen::EigenSolver<Matrix> eig(saddle.monodromy);
+  const nbm::GeneralEigen eig = nbm::general_eigen(saddle.monodromy, true);
   Index j = 0;
-  eig.eigenvalues().cwiseAbs().maxCoeff(&j);
-  const Eigen::Vector2d unstable = eig.eigenvectors().col(j).real().normalized();
+  eig.values.cwiseAbs().maxCoeff(&j);
+  const Eigen::Vector2d unstable = eig.vectors.col(j).real().normalized();
   const Eigen::Vector2d star(saddle.u0(0), saddle.v0(0));
   std::vector<Eigen::Vector2d> ends;
   for (double side : {1.0, -1.0}) {

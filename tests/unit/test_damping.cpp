@@ -7,13 +7,13 @@
 // the damped bouncing bar (dissipation, no penetration); bad input.
 #include <gtest/gtest.h>
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <string>
 
 #include "api/solver.hpp"
 #include "base/errors.hpp"
 #include "contact/contact_problem.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "test_problems.hpp"
 #include "test_util.hpp"
 
@@ -87,9 +87,9 @@ struct Reduced {
     }
     M_r = P.transpose() * M * P;
     K_r = P.transpose() * K * P;
-    Eigen::GeneralizedSelfAdjointEigenSolver<Mat> eig(K_r, M_r);
-    Phi = eig.eigenvectors();
-    w = eig.eigenvalues().cwiseSqrt();
+    const nbm::SymmetricEigen eig = nbm::generalized_symmetric_eigen(K_r, M_r);
+    Phi = eig.vectors;
+    w = eig.values.cwiseSqrt();
   }
   /// The exact damped free motion (Rayleigh C_r = a_M M_r + b_K K_r is
   /// modal) from rest at u0 (full coordinates), at time t.

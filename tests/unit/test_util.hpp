@@ -1,7 +1,9 @@
 // Small numerical helpers shared by the unit tests: random matrices with a
 // prescribed spectrum, a brute-force LCP solver, and error-message checks.
 // Everything here is independent of the nbm core (it only uses Eigen), so the
-// tests compare the core against separate computations.
+// tests compare the core against separate computations. The helpers are
+// compiled once, in test_util.cpp: as inline functions every test file
+// instantiated their dense decompositions (long double LU among them) again.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -20,101 +22,28 @@ using Vec = Eigen::VectorXd;
 using Mat = Eigen::MatrixXd;
 
 /// Random orthogonal matrix (Q factor of a Gaussian matrix).
-inline Mat random_orthogonal(int n, std::mt19937& rng) {
-  std::normal_distribution<double> N(0, 1);
-  Mat G(n, n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) G(i, j) = N(rng);
-  Eigen::HouseholderQR<Mat> qr(G);
-  return qr.householderQ() * Mat::Identity(n, n);
-}
+Mat random_orthogonal(int n, std::mt19937& rng);
 
 /// SPD matrix with eigenvalues log-spaced in [1, cond] and random eigenvectors,
 /// exactly symmetric.
-inline Mat random_spd(int n, double cond, std::mt19937& rng) {
-  const Mat Q = random_orthogonal(n, rng);
-  Vec d(n);
-  for (int i = 0; i < n; ++i) d(i) = n == 1 ? 1.0 : std::pow(cond, double(i) / (n - 1));
-  Mat A = Q * d.asDiagonal() * Q.transpose();
-  return 0.5 * (A + A.transpose());
-}
+Mat random_spd(int n, double cond, std::mt19937& rng);
 
-inline Vec random_vector(int n, std::mt19937& rng, double scale = 1.0) {
-  std::normal_distribution<double> N(0, scale);
-  Vec v(n);
-  for (int i = 0; i < n; ++i) v(i) = N(rng);
-  return v;
-}
+Vec random_vector(int n, std::mt19937& rng, double scale = 1.0);
 
 /// The rows of the constraint matrix G of an active set: per node k, column
 /// k of B (open) or column n_c + k (closed), B = [B_open B_closed].
-inline Mat constraint_rows(const Mat& B, const std::vector<bool>& closed) {
-  const Eigen::Index nc = B.cols() / 2;
-  Mat G(nc, B.rows());
-  for (Eigen::Index k = 0; k < nc; ++k) G.row(k) = B.col(closed[k] ? nc + k : k).transpose();
-  return G;
-}
+Mat constraint_rows(const Mat& B, const std::vector<bool>& closed);
 
 /// x of X x = r + G^T mu, G x = h, G = constraint_rows(B, closed), from the
 /// dense KKT system [X -G^T; G 0] [x; mu] = [r; h].
-inline Vec kkt_solution(const Mat& X, const Mat& B, const std::vector<bool>& closed,
-                        const Vec& r, const Vec& h) {
-  const Eigen::Index n = X.rows(), nc = B.cols() / 2;
-  const Mat G = constraint_rows(B, closed);
-  Mat kkt = Mat::Zero(n + nc, n + nc);
-  kkt.topLeftCorner(n, n) = X;
-  kkt.topRightCorner(n, nc) = -G.transpose();
-  kkt.bottomLeftCorner(nc, n) = G;
-  Vec rhs(n + nc);
-  rhs << r, h;
-  return kkt.fullPivLu().solve(rhs).head(n);
-}
+Vec kkt_solution(const Mat& X, const Mat& B, const std::vector<bool>& closed, const Vec& r,
+                 const Vec& h);
 
 /// Brute-force LCP: enumerates all 2^n complementary bases (free set F with
 /// z_F = -A_FF^{-1} q_F, z elsewhere 0) in extended precision and returns the
 /// z of the basis with the smallest sign violation (for a P-matrix exactly one
 /// z is feasible; degenerate problems have several bases giving that z).
-inline Vec brute_force_lcp(const Mat& A, const Vec& q) {
-  using LMat = Eigen::Matrix<long double, Eigen::Dynamic, Eigen::Dynamic>;
-  using LVec = Eigen::Matrix<long double, Eigen::Dynamic, 1>;
-  const int n = static_cast<int>(q.size());
-  const LMat Al = A.cast<long double>();
-  const LVec ql = q.cast<long double>();
-  long double best_violation = INFINITY;
-  LVec best = LVec::Zero(n);
-  for (unsigned mask = 0; mask < (1u << n); ++mask) {
-    std::vector<int> F;
-    for (int i = 0; i < n; ++i)
-      if (mask & (1u << i)) F.push_back(i);
-    const int m = static_cast<int>(F.size());
-    LVec z = LVec::Zero(n);
-    if (m > 0) {
-      LMat AFF(m, m);
-      LVec qF(m);
-      for (int a = 0; a < m; ++a) {
-        qF(a) = ql(F[a]);
-        for (int b = 0; b < m; ++b) AFF(a, b) = Al(F[a], F[b]);
-      }
-      const LVec zF = AFF.partialPivLu().solve(-qF);
-      for (int a = 0; a < m; ++a) z(F[a]) = zF(a);
-    }
-    const LVec w = ql + Al * z;
-    // Violation relative to the scales of z and w.
-    const long double zs = std::max<long double>(z.cwiseAbs().maxCoeff(), 1e-300L);
-    const long double ws = std::max<long double>(
-        std::max(ql.cwiseAbs().maxCoeff(), (Al * z).cwiseAbs().maxCoeff()), 1e-300L);
-    long double violation = 0;
-    for (int i = 0; i < n; ++i) {
-      const bool free = mask & (1u << i);
-      violation = std::max(violation, free ? -z(i) / zs : -w(i) / ws);
-    }
-    if (violation < best_violation) {
-      best_violation = violation;
-      best = z;
-    }
-  }
-  return best.cast<double>();
-}
+Vec brute_force_lcp(const Mat& A, const Vec& q);
 
 /// Runs f, expects it to throw E, and checks that the message contains every
 /// string of `parts` (the argument name and what went wrong).

@@ -7,11 +7,11 @@
 #include <string>
 #include <tuple>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
 #include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "periodic/gauss_newton.hpp"
 
 namespace nbm {
@@ -549,15 +549,16 @@ PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Da
 
   // The eigenvector of the real multiplier nearest -1, at t = 0 where the
   // event's orbit starts: the period-2 orbit leaves x* along it.
-  Eigen::EigenSolver<Matrix> eig(event.orbit.monodromy);
+  const GeneralEigen eig = general_eigen(event.orbit.monodromy, true);
+  if (!eig.ok) throw NumericalError(c + "the eigenvalue solver of the event's monodromy failed");
   Index j = -1;
   double best = std::numeric_limits<double>::infinity();
-  for (Index i = 0; i < eig.eigenvalues().size(); ++i) {
-    const auto mu = eig.eigenvalues()(i);
+  for (Index i = 0; i < eig.values.size(); ++i) {
+    const auto mu = eig.values(i);
     if (is_real(mu) && std::abs(mu + 1.0) < best) best = std::abs(mu + 1.0), j = i;
   }
   if (j < 0) throw NumericalError(c + "the event's orbit has no real multiplier");
-  Vector row = problem.scaled_state(eig.eigenvectors().col(j).real());
+  Vector row = problem.scaled_state(eig.vectors.col(j).real());
   row.normalize();
 
   // Bordered corrector on the period-2m map with the condition

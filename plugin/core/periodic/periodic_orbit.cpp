@@ -4,8 +4,10 @@
 #include <cmath>
 #include <sstream>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
+
+#include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 
 namespace nbm {
 
@@ -31,8 +33,10 @@ std::vector<std::complex<double>> floquet_multipliers(const Matrix& monodromy, c
     B = Z.transpose() * monodromy * Z;
     mu.emplace_back(1.0);
   }
-  Eigen::EigenSolver<Matrix> eig(B, false);
-  for (Index k = 0; k < eig.eigenvalues().size(); ++k) mu.push_back(eig.eigenvalues()(k));
+  const GeneralEigen eig = general_eigen(B, false);
+  if (!eig.ok)
+    throw NumericalError("Floquet multipliers: the eigenvalue solver of the monodromy failed");
+  for (Index k = 0; k < eig.values.size(); ++k) mu.push_back(eig.values(k));
   std::stable_sort(mu.begin(), mu.end(), [](auto a, auto b) { return std::abs(a) > std::abs(b); });
   return mu;
 }

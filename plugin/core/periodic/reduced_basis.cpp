@@ -4,10 +4,10 @@
 #include <random>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCholesky>
 
 #include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 
 namespace nbm {
 namespace {
@@ -64,10 +64,12 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   for (int it = 0;; ++it) {
     const Matrix Y = KOO_inv.solve(MOO * X);
     const Matrix Kr = Y.transpose() * (KOO * Y), Mr = Y.transpose() * (MOO * Y);
-    Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(0.5 * (Kr + Kr.transpose()),
+    const SymmetricEigen eig = generalized_symmetric_eigen(0.5 * (Kr + Kr.transpose()),
                                                          0.5 * (Mr + Mr.transpose()));
-    X = Y * eig.eigenvectors();
-    w2 = eig.eigenvalues().head(modes);
+    if (!eig.ok)
+      throw NumericalError("reduced basis: the eigenvalue solver of the subspace failed");
+    X = Y * eig.vectors;
+    w2 = eig.values.head(modes);
     if (((w2 - previous).cwiseAbs().array() <= 1e-12 * w2.cwiseAbs().array()).all()) {
       Phi = X.leftCols(modes);
       break;
@@ -82,12 +84,14 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   V.leftCols(modes) = Phi;
   V.rightCols(nc) = -KOO_inv.solve(Matrix(KOC));
   const Matrix G = V.transpose() * (MOO * V);
-  Eigen::SelfAdjointEigenSolver<Matrix> gram(0.5 * (G + G.transpose()));
-  const double top = gram.eigenvalues().maxCoeff();
+  const SymmetricEigen gram = symmetric_eigen(0.5 * (G + G.transpose()));
+  if (!gram.ok)
+    throw NumericalError("reduced basis: the eigenvalue solver of the Gram matrix failed");
+  const double top = gram.values.maxCoeff();
   Index kept = 0;
-  for (Index k = 0; k < gram.eigenvalues().size(); ++k) kept += gram.eigenvalues()(k) > 1e-12 * top;
-  V_ = V * gram.eigenvectors().rightCols(kept) *
-       gram.eigenvalues().tail(kept).cwiseSqrt().cwiseInverse().asDiagonal();
+  for (Index k = 0; k < gram.values.size(); ++k) kept += gram.values(k) > 1e-12 * top;
+  V_ = V * gram.vectors.rightCols(kept) *
+       gram.values.tail(kept).cwiseSqrt().cwiseInverse().asDiagonal();
   VtM_ = (MOO * V_).transpose();
 
   // Reduced contact problem: coordinates (q, u_C).

@@ -4,9 +4,9 @@
 #include <cmath>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 
 #include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 #include "linalg/lcp.hpp"
 
 namespace nbm {
@@ -183,10 +183,10 @@ std::shared_ptr<const Region> ReducedField::region(const ActiveSet& active) cons
   r->mass.compute(r->M);
   if (r->mass.info() != Eigen::Success)
     throw NumericalError("reduced field: the reduced mass matrix is not positive definite");
-  Eigen::GeneralizedSelfAdjointEigenSolver<Matrix> eig(r->K, r->M);
-  if (eig.info() != Eigen::Success)
+  const SymmetricEigen eig = generalized_symmetric_eigen(r->K, r->M);
+  if (!eig.ok)
     throw NumericalError("reduced field: eigenvalue problem K_S phi = w^2 M_S phi failed");
-  r->omega2 = eig.eigenvalues();
+  r->omega2 = eig.values;
   // Zero is judged against the largest frequency and against K_OO / M_S:
   // when every mode of a region is rigid (a free body, one interior dof),
   // the Schur complement K_S is the round-off of K_OO's cancellation.
@@ -199,7 +199,7 @@ std::shared_ptr<const Region> ReducedField::region(const ActiveSet& active) cons
       throw NumericalError("reduced field: the reduced stiffness is not positive semi-definite");
     if (r->omega2(k) < 1e-13 * top) r->omega2(k) = 0;
   }
-  r->modes = eig.eigenvectors();
+  r->modes = eig.vectors;
   // Cache it within the budget, the least recently used regions first out.
   const std::size_t bytes = bytes_of(*r);
   if (bytes > cache_budget_) return r;

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <string>
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
 #include "base/errors.hpp"
+#include "linalg/dense_eigen.hpp"
 
 namespace nbm {
 namespace {
@@ -36,12 +36,12 @@ StateSpaceModes::StateSpaceModes(const Region& region, const Matrix& C_S) {
   A.topRightCorner(n, n) = omega.asDiagonal();
   A.bottomLeftCorner(n, n) = -omega.asDiagonal().toDenseMatrix();
   A.bottomRightCorner(n, n) = -C_modal;
-  const Eigen::EigenSolver<Matrix> eig(A);
-  if (eig.info() != Eigen::Success)
+  const GeneralEigen eig = general_eigen(A, true);
+  if (!eig.ok)
     throw NumericalError("exact flow with a damping matrix: the eigenvalue solver of the "
                          "region's first-order system failed");
-  lambda = eig.eigenvalues();
-  V = eig.eigenvectors();
+  lambda = eig.values;
+  V = eig.vectors;
   const double scale = lambda.cwiseAbs().maxCoeff();
   if (lambda.real().maxCoeff() > 1e-10 * scale)
     throw NumericalError("exact flow with a damping matrix: the region's motion has a growing "
