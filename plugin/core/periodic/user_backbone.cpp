@@ -81,8 +81,13 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   method << "method pseudo-arclength continuation from grazing along the backbone of mode "
          << mode << " (shooting, " << (options.half_period ? "half period" : "full period")
          << ", exact flow)\n";
+  // The orbits kept for their reports, without their monodromy matrices
+  // (2n x 2n each, which the reports do not read).
   std::vector<PeriodicOrbit> orbits;
-  for (const BackbonePoint& p : b.points) orbits.push_back(p.orbit);
+  for (const BackbonePoint& p : b.points) {
+    orbits.push_back(p.orbit);
+    orbits.back().monodromy.resize(0, 0);
+  }
   const std::size_t n = orbits.size();  // before orbits moves into the reporter
   r.orbits = std::make_shared<const OrbitSequence>(
       n, [model = std::shared_ptr<const OrbitModel>(std::move(model)),

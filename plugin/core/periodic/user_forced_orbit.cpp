@@ -228,10 +228,14 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
   ForcedOrbitOptions lo = o;
   lo.probe = out.probe;
   lo.subharmonic = c.shooting.subharmonic;
-  const std::size_t n = curve.points.size();
+  // The points kept for their reports, without their monodromy matrices
+  // (2n x 2n each, which the reports do not read).
+  std::vector<ForcedPoint> points = curve.points;
+  for (ForcedPoint& p : points) p.orbit.monodromy.resize(0, 0);
+  const std::size_t n = points.size();
   const double shown = factor;
   out.orbits = std::make_shared<const OrbitSequence>(
-      n, [f, c, lo, parameter, shown, points = curve.points,
+      n, [f, c, lo, parameter, shown, points = std::move(points),
           stop = curve.stop_reason](std::size_t k) {
         const ForcedPoint& p = points[k];
         std::ostringstream method;
