@@ -551,8 +551,7 @@ class SelectOrbit : public E_F0mps {
       fail(std::string(fn) + ": k: point " + std::to_string(k) + " out of range [0, " +
            std::to_string(n) + ") (the points of the last " +
            (branch ? "period-doubled branch" : "backbone or response curve") + ")");
-    const ModelHandle::Curve held = *curve;  // select may not drop what it reads
-    guarded(fn, [&] { h->select(*held, static_cast<std::size_t>(k)); });
+    guarded(fn, [&] { h->select(**curve, static_cast<std::size_t>(k)); });
     return SetAny<double>(keep_state(h, U, V));
   }
   operator aType() const override { return atype<double>(); }

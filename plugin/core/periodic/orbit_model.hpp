@@ -58,8 +58,9 @@ struct OrbitModel {
 /// or non-finite entries.
 Vector user_vector(const std::vector<double>& x, Index n, const std::string& name);
 std::vector<double> to_std(const Vector& x);
-/// Whether a user dof is one of the field's interior unknowns u_O.
-bool is_interior(const ContactProblem& p, const ReducedField& field, long dof);
+/// Position in u_O of a user dof, or -1 if it is not one of the field's
+/// interior unknowns (out of range, fixed, a contact node's normal component).
+Index find_interior(const ContactProblem& p, const ReducedField& field, long dof);
 /// Position in u_O of a user dof; InputError naming `name` if it is out of
 /// range, fixed or the normal component of a contact node.
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,

@@ -32,10 +32,12 @@ Vector user_vector(const std::vector<double>& x, Index n, const std::string& nam
 
 std::vector<double> to_std(const Vector& x) { return {x.data(), x.data() + x.size()}; }
 
-bool is_interior(const ContactProblem& p, const ReducedField& field, long dof) {
+Index find_interior(const ContactProblem& p, const ReducedField& field, long dof) {
   const Index internal = dof >= 0 && dof < p.n_dofs() ? p.internal_index(dof) : -1;
-  return internal >= 0 &&
-         std::binary_search(field.interior().begin(), field.interior().end(), internal);
+  if (internal < 0) return -1;
+  const auto& in = field.interior();
+  const auto it = std::lower_bound(in.begin(), in.end(), internal);
+  return it != in.end() && *it == internal ? it - in.begin() : -1;
 }
 
 Index interior_position(const ContactProblem& p, const ReducedField& field, long dof,
@@ -43,14 +45,12 @@ Index interior_position(const ContactProblem& p, const ReducedField& field, long
   if (dof < 0 || dof >= p.n_dofs())
     throw InputError(name + ": dof " + std::to_string(dof) + " out of range [0, " +
                      std::to_string(p.n_dofs()) + ")");
-  const Index internal = p.internal_index(dof);
-  const auto& in = field.interior();
-  const auto it = std::lower_bound(in.begin(), in.end(), internal);
-  if (internal < 0 || it == in.end() || *it != internal)
+  const Index position = find_interior(p, field, dof);
+  if (position < 0)
     throw InputError(name + ": dof " + std::to_string(dof) +
                      " is fixed or the normal component of a contact node; choose an interior "
                      "dof");
-  return it - in.begin();
+  return position;
 }
 
 OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
@@ -169,13 +169,12 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   // The dof of the phase and displacement conditions: phase, else the
   // probe when it is interior (a contact dof's normal component is slaved,
   // fixed by the interior, and cannot carry a condition), else the largest.
-  Index probe = 0;
+  Index probe = -1;
   if (o.phase != -1)
     probe = interior_position(problem, field, o.phase, "phase");
-  else if (o.probe >= 0 && o.modes == 0 && is_interior(problem, field, o.probe))
-    probe = interior_position(problem, field, o.probe, "probe");
-  else
-    u0.cwiseAbs().maxCoeff(&probe);
+  else if (o.probe >= 0 && o.modes == 0)
+    probe = find_interior(problem, field, o.probe);
+  if (probe < 0) u0.cwiseAbs().maxCoeff(&probe);
 
   OrbitReport report;
   PeriodicOrbit orbit;
