@@ -6,6 +6,8 @@ packages=(
   build-essential cmake pkg-config
   freefem++ libfreefem++-dev gmsh gnuplot-nox
   libeigen3-dev libsuitesparse-dev
+  libmumps-dev libopenmpi-dev openmpi-bin   # MUMPS on MPI: the iteration
+                                # matrix on several ranks under FreeFem++-mpi / ff-mpirun
   libopenblas0-pthread          # optimised BLAS/LAPACK for CHOLMOD and the core's
   libblas-dev liblapack-dev     # dense kernels (issue 14), see below; -lblas -llapack to link
   libgtest-dev libbenchmark-dev

@@ -25,15 +25,19 @@
 //   nbmReactions(S, lambda); nbmGaps(S, gap); nbmActive(S, act);
 //   nbmEnergies(S, e);  real t = nbmTime(S); ...  // e: 7 entries, e[5] dissipated, e[6] load work
 //   NBMObstacle bowl("circle", c, radius = R, side = "inside");   // obstacle_functions.cpp
+//   NBMModel Mp(..., solver = "mumps");  // the iteration matrix on MUMPS, over the
+//                       // ranks of ff-mpirun -np N (default "cholmod"; method.md §4)
 //   NBM F(M, K, cdofs, normals, gaps, dt = 1e-3, mass = "redistributed",
 //         positions = xy, obstacle = bowl,  // held exactly, frame following the body
 //         crossings = "warn");               // or "error": other nodes inside the obstacle
 //   long c = nbmCrossings(F);              // those nodes at the last nbmStep
+//   int r = nbmMpiRank(), n = nbmMpiSize();  // 0 and 1 unless under ff-mpirun
 //
 // Only this file sees FreeFEM headers. Every error from the core reaches the
 // script as an ExecError whose message names the argument.
 #include "binding.hpp"
 #include "dirichlet.hpp"
+#include "linalg/mpi_ranks.hpp"
 
 using namespace nbm_binding;
 
@@ -41,12 +45,12 @@ namespace {
 
 // The named arguments of a model (NBMModel, and the shorthand NBM), in this
 // order.
-constexpr int kModelParams = 7;
+constexpr int kModelParams = 8;
 #define NBM_MODEL_PARAMS                                                        \
   {"fixed", &typeid(KN<long>*)}, {"mass", &typeid(string*)},                    \
       {"positions", &typeid(KN<double>*)}, {"rayleighM", &typeid(double)},      \
       {"rayleighK", &typeid(double)}, {"damping", &typeid(Matrice_Creuse<double>*)}, \
-      {"obstacle", &typeid(ObstacleHandle*)}
+      {"obstacle", &typeid(ObstacleHandle*)}, {"solver", &typeid(string*)}
 // The named arguments of a time integrator (NBM), in this order.
 constexpr int kSchemeParams = 8;
 #define NBM_SCHEME_PARAMS                                                       \
@@ -75,6 +79,9 @@ std::shared_ptr<const nbm::Model> build_model(Stack s, const Expression (&e)[5],
       fail(std::string(function) + ": obstacle: the NBMObstacle was not constructed");
     opt.obstacle = *o->description;
   }
+  if (a[7])
+    opt.solver = choice_of(*GetAny<string*>((*a[7])(s)), function, "solver",
+                           {nbm::SparseSolver::kCholmod, nbm::SparseSolver::kMumps});
   nbm::ContactDescription contact;
   contact.dofs = vector_of<long>(GetAny<KN<long>*>((*e[2])(s)), function, "contact dofs");
   contact.normals = vector_of<double>(GetAny<KN<double>*>((*e[3])(s)), function, "normals");
@@ -384,6 +391,11 @@ long nbm_crossings(NbmHandle* const& h) {
   return h->crossings;
 }
 
+// The MPI rank of this process and the number of ranks (0 and 1 in a plain
+// FreeFem++ run, where the script has no mpirank): which rank writes what.
+long nbm_mpi_rank() { return nbm::world_rank(); }
+long nbm_mpi_size() { return nbm::world_size(); }
+
 void Load_Init() {
   load_obstacle_functions();  // NBMObstacle, which NBM's obstacle= takes
   Dcl_Type<ModelHandle*>(InitP<ModelHandle>, Destroy<ModelHandle>);
@@ -418,6 +430,8 @@ void Load_Init() {
   Global.Add("nbmAcceleration", "(", new OneOperator2_<long, H, R>(nbm_acceleration));
   Global.Add("nbmFixedDofs", "(", new OneOperator2_<long, ModelHandle*, KN<long>*>(nbm_fixed));
   Global.Add("nbmTime", "(", new OneOperator1_<double, H>(nbm_time));
+  Global.Add("nbmMpiRank", "(", new OneOperator0<long>(nbm_mpi_rank));
+  Global.Add("nbmMpiSize", "(", new OneOperator0<long>(nbm_mpi_size));
   Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
   Global.Add("nbmContactNodes", "(", new OneOperator1_<long, ModelHandle*>(nbm_n_contact));

@@ -17,8 +17,9 @@ Fails (exit 1), naming the file, the line and the include, if
   - a quoted include does not resolve to an existing file from the single
     include root plugin/core ("linalg/lcp.hpp", not "lcp.hpp" or "../x");
   - a core file includes a FreeFEM header (ff++.hpp, AFunction.hpp, ...) or
-    any header that is not the standard library's, Eigen's or CHOLMOD's
-    (the core's external dependencies: plugin/core/linalg/CMakeLists.txt);
+    any header that is not the standard library's, Eigen's, CHOLMOD's,
+    MUMPS's or MPI's (the core's external dependencies:
+    plugin/core/linalg/CMakeLists.txt);
   - the CMake links of the layers form a cycle, a layer links a target that
     is not a layer, a folder of the core has no target of its own, or a
     .cpp of a folder is not compiled by its folder's target.
@@ -34,10 +35,10 @@ CORE = os.path.join("plugin", "core")
 SOURCE_SUFFIXES = (".hpp", ".cpp", ".h", ".cc", ".ipp", ".inl")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]*)[>"]')
 # External headers the core may include: the C++ standard library (no
-# extension), Eigen, CHOLMOD. A new dependency is added here and to the CMake
-# target that links it.
+# extension), Eigen, CHOLMOD, MUMPS (double precision, C interface), MPI. A
+# new dependency is added here and to the CMake target that links it.
 EXTERNAL = (re.compile(r"^[a-z_]+$"), re.compile(r"^Eigen/[A-Za-z]+$"),
-            re.compile(r"^cholmod\.h$"))
+            re.compile(r"^cholmod\.h$"), re.compile(r"^dmumps_c\.h$"), re.compile(r"^mpi\.h$"))
 # FreeFEM's headers (the binding's, plugin/freefem): named as such when met.
 FREEFEM = {"ff++.hpp", "AFunction.hpp", "AFunction_ext.hpp", "AddNewFE.h", "RNM.hpp",
            "fem.hpp", "FESpace.hpp", "FESpacen.hpp", "MatriceCreuse.hpp", "MatriceCreuse_tpl.hpp",
@@ -180,7 +181,7 @@ def main():
                     if kind == "<":
                         if not any(p.match(target) for p in EXTERNAL):
                             errors.append(f"{where}: not a header of the standard library, "
-                                          f"Eigen or CHOLMOD (the core's dependencies)")
+                                          f"Eigen, CHOLMOD, MUMPS or MPI (the core's dependencies)")
                         continue
                     target_parts = target.split("/")
                     if (target.startswith("/") or ".." in target_parts or len(target_parts) < 2

@@ -109,6 +109,7 @@ std::unique_ptr<ContactProblem> contact_problem(const Model::Data& data,
 // coordinates.
 void build_problem(Model::Data& data, const ContactDescription& contact) {
   data.problem = contact_problem(data, contact);
+  data.problem->set_factorizer(SparseFactorizer(data.options.solver));
   data.damping = data.damping_user;
   if (data.damping.has_matrix() && !data.obstacle)
     data.damping.C_user = data.problem->to_internal(data.damping_user.C_user);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "linalg/coo_matrix.hpp"
+#include "linalg/sparse_solver.hpp"
 
 namespace nbm {
 
@@ -100,6 +101,11 @@ struct ModelOptions {
   /// nodes (its normals and gaps are checked but not used: the obstacle
   /// replaces them). Needs mass "redistributed".
   std::optional<ObstacleDescription> obstacle;
+  /// The library that factors the sparse matrices of the time integration
+  /// (the iteration matrix, the mass at a start): kCholmod in this process,
+  /// or kMumps on every rank of MPI_COMM_WORLD (method.md §4). The periodic
+  /// tools do not use it.
+  SparseSolver solver = SparseSolver::kCholmod;
 
   bool damped() const { return rayleigh_mass != 0 || rayleigh_stiffness != 0 || damping.rows != 0; }
 };

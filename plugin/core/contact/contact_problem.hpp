@@ -7,6 +7,7 @@
 
 #include "base/types.hpp"
 #include "contact/contact_set.hpp"
+#include "linalg/sparse_factorizer.hpp"
 
 namespace nbm {
 
@@ -68,6 +69,11 @@ class ContactProblem {
   /// vectors must round its state through them to restart exactly.
   bool exact_round_trip() const { return exact_round_trip_; }
 
+  /// The library that factors the problem's sparse matrices (CHOLMOD unless
+  /// set: the option `solver` of a model, before the problem is shared).
+  const SparseFactorizer& factorizer() const { return factorizer_; }
+  void set_factorizer(SparseFactorizer factorizer) { factorizer_ = factorizer; }
+
  private:
   /// Sets M (built by redistributed_mass()); throws InputError if its rows
   /// and columns of the contact dofs do not vanish.
@@ -86,6 +92,7 @@ class ContactProblem {
   SparseMatrix B_;
   bool massless_boundary_ = false;
   bool exact_round_trip_ = true;
+  SparseFactorizer factorizer_;
 };
 
 }  // namespace nbm

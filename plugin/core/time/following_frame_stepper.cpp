@@ -105,11 +105,13 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
   // S = M' + gamma dt C + beta dt^2 K (method.md §5, §9).
   SparseMatrix S = M_ + (options_.beta * dt * dt) * problem.K();
   if (damped()) S += (options_.gamma * dt) * C_;
-  S_ = make_cholesky_inverse(S, "M' + gamma dt C + beta dt^2 K (massless contact nodes)");
   std::vector<Triplet> e;
   for (Index i = 0; i < n_c_ * d_; ++i) e.emplace_back(node_dofs_[i], i, 1.0);
   SparseMatrix E(problem.size(), n_c_ * d_);
   E.setFromTriplets(e.begin(), e.end());
+  // Factored for the solves with the columns E_N (every component of the
+  // contact nodes: the frame turns with them).
+  S_ = problem.factorizer().factor(S, "M' + gamma dt C + beta dt^2 K (massless contact nodes)", E);
   // Y = L^-1 P E_N kept where it is small next to L (as the massless step of
   // method.md §5 does): a step is then one substitution each way plus the
   // products with Y, instead of two whole solves.

@@ -40,14 +40,20 @@ ImplicitScheme::ImplicitScheme(const ContactProblem& problem, double dt,
       beta_dt2_(effective(parameters.beta, parameters) * dt * dt),
       gamma_dt_(effective(parameters.gamma, parameters) * dt) {
   if (!parameters.weighted()) check_newmark_parameters(parameters.beta, parameters.gamma);
-  // Ordered for the constrained solves with B = [K_{:,C} E_C] (both mass
-  // treatments solve with columns of B).
+  // Factored for the constrained solves with B = [K_{:,C} E_C]: CHOLMOD
+  // orders for B in both mass treatments; MUMPS condenses on the rows of the
+  // columns the steps use, E_C alone in the massless step (method.md §5),
+  // whose stiffness columns would add the contact nodes' neighbours.
   const SparseMatrix& B = problem.constraint_basis();
+  const SparseFactorizer& factorizer = problem.factorizer();
+  const SparseMatrix E_C = B.rightCols(problem.n_contact());
+  const SparseMatrix& columns =
+      factorizer.solver() == SparseSolver::kMumps && problem.massless_boundary() ? E_C : B;
   if (C.size() == 0)
-    S_ = make_cholesky_inverse(problem.M() + beta_dt2_ * problem.K(), "M + beta dt^2 K", B);
+    S_ = factorizer.factor(problem.M() + beta_dt2_ * problem.K(), "M + beta dt^2 K", columns);
   else
-    S_ = make_cholesky_inverse(problem.M() + gamma_dt_ * C + beta_dt2_ * problem.K(),
-                               "M + gamma dt C + beta dt^2 K", B);
+    S_ = factorizer.factor(problem.M() + gamma_dt_ * C + beta_dt2_ * problem.K(),
+                           "M + gamma dt C + beta dt^2 K", columns);
   if (parameters.weighted()) b_ = Vector::Zero(problem.size());
 }
 

@@ -46,7 +46,7 @@ void MoreauJeanStepper::restore_scheme_state(const Vector& state) {
 void MoreauJeanStepper::solve_acceleration(const Vector& F) {
   a_ = F - problem_.K() * u_;
   if (damped()) a_ -= C_ * v_;
-  make_cholesky_inverse(problem_.M(), "M")->solve_in_place(a_);
+  problem_.factorizer().factor(problem_.M(), "M")->solve_in_place(a_);
 }
 
 StepReport MoreauJeanStepper::advance(const ContactLoad& next) {

@@ -80,7 +80,7 @@ void NewmarkStepper::limit_energy(const ContactLoad& next) {
     // Built at the first step that needs them: a run whose steps all keep
     // their balance pays nothing for them.
     mass_ = std::make_unique<ConstrainedSolver>(
-        make_cholesky_inverse(problem_.M(), "M", problem_.constraint_basis()),
+        problem_.factorizer().factor(problem_.M(), "M", problem_.constraint_basis()),
         problem_.constraint_basis());
     const double half = 0.5 * dt_;
     half_lcp_ =

@@ -19,7 +19,7 @@ NewmarkStepper::NewmarkStepper(const ContactProblem& problem, double dt,
 
 void NewmarkStepper::solve_acceleration(const ContactLoad& load) {
   // Needed once per (re)start: a mass factorization used and released here.
-  const auto mass = make_cholesky_inverse(problem_.M(), "M", problem_.constraint_basis());
+  const auto mass = problem_.factorizer().factor(problem_.M(), "M", problem_.constraint_basis());
   Vector r = load.F - problem_.K() * u_;
   if (damped()) r.noalias() -= C_ * v_;  // v_ on the relation already (start())
   acceleration_constraint(load, active_, h_accel_);
