@@ -101,6 +101,7 @@ nbm_bad_case(damping-explicit [=[NBM: damping: the explicit scheme takes only ma
 nbm_bad_case(moreau-jean-with-gamma [=[NBM: gamma: given with scheme "moreau-jean"]=])
 nbm_bad_case(moreau-jean-redistributed [=[NBM: mass: "redistributed" needs scheme "newmark"]=])
 nbm_bad_case(mass-unknown [=[NBM: mass: "lumped", expected "consistent" or "redistributed"]=])
+nbm_bad_case(solver-unknown [=[NBMModel: solver: "pardiso", expected "cholmod" or "mumps"]=])
 nbm_bad_case(positions-missing [=[NBM: positions: size 0, expected 1, 2 or 3 coordinates per dof]=])
 nbm_bad_case(positions-size [=[NBM: positions: size 10, expected 1, 2 or 3 coordinates per dof \(n_dofs = 11\)]=])
 nbm_bad_case(positions-nan [=[NBM: positions: non-finite coordinates]=])
