@@ -18,23 +18,14 @@
 set -u
 build=$1 repo=$2 script=$3 out=$4 tol=$5
 shift 5
-run=$repo/tests/scripts/run-freefem.sh
-multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch 2>/dev/null)
+run=$repo/tests/scripts/run-freefem.sh mpirun=$repo/tests/scripts/run-freefem-mpi.sh
 
 bash "$run" "$build" "$repo" "$script" "$@" -solver cholmod -out "$out-cholmod" > "$out-cholmod.log" 2>&1 \
   || { cat "$out-cholmod.log"; echo "mpi-compare: the CHOLMOD run failed"; exit 1; }
 bash "$run" "$build" "$repo" "$script" "$@" -solver mumps -out "$out-mumps" > "$out-mumps.log" 2>&1 \
   || { cat "$out-mumps.log"; echo "mpi-compare: the 1-process MUMPS run failed"; exit 1; }
 
-# OpenMPI refuses root unless told; CI runs as root.
-root_flags=()
-[ "$(id -u)" -eq 0 ] && root_flags=(--allow-run-as-root)
-FF_LOADPATH="$build/plugin;/usr/lib/freefem++${multiarch:+;/usr/lib/$multiarch/freefem++}" \
-FF_INCLUDEPATH="$repo/edp;$repo/tests/scripts;/usr/include/freefem++/idp" \
-  timeout 600 mpirun "${root_flags[@]}" --oversubscribe -np 2 \
-    -x FF_LOADPATH -x FF_INCLUDEPATH -x OPENBLAS_NUM_THREADS \
-    FreeFem++-mpi -nw -ne -v 0 "$script" -geodir "$repo/geo" "$@" -solver mumps -out "$out-mpi" \
-    > "$out-mpi.log" 2>&1 \
+bash "$mpirun" "$build" "$repo" 2 "$script" "$@" -solver mumps -out "$out-mpi" > "$out-mpi.log" 2>&1 \
   || { cat "$out-mpi.log"; echo "mpi-compare: the 2-rank MUMPS run failed"; exit 1; }
 
 /usr/bin/python3 - "$out" "$tol" <<'EOF'

@@ -9,16 +9,9 @@
 set -u
 build=$1 repo=$2 script=$3 args=$4
 shift 4
-multiarch=$(dpkg-architecture -qDEB_HOST_MULTIARCH 2>/dev/null || gcc -print-multiarch 2>/dev/null)
-root_flags=()
-[ "$(id -u)" -eq 0 ] && root_flags=(--allow-run-as-root)  # OpenMPI refuses root unless told; CI runs as root
 IFS=, read -r -a script_args <<< "$args"
-out=$(FF_LOADPATH="$build/plugin;/usr/lib/freefem++${multiarch:+;/usr/lib/$multiarch/freefem++}" \
-  FF_INCLUDEPATH="$repo/edp;$repo/tests/scripts;$(dirname "$script");/usr/include/freefem++/idp" \
-  NBM_MPI_TIMEOUT=10 \
-  timeout 120 mpirun "${root_flags[@]}" --oversubscribe -np 2 \
-    -x FF_LOADPATH -x FF_INCLUDEPATH -x NBM_MPI_TIMEOUT \
-    FreeFem++-mpi -nw -ne -v 0 "$script" "${script_args[@]}" 2>&1)
+out=$(NBM_MPI_TIMEOUT=10 NBM_MPIRUN_LIMIT=120 \
+  bash "$repo/tests/scripts/run-freefem-mpi.sh" "$build" "$repo" 2 "$script" "${script_args[@]}" 2>&1)
 code=$?
 printf '%s\n' "$out" | tail -n 20
 if [ $code -eq 124 ]; then echo "FAIL: the job hung (timeout)"; exit 1; fi

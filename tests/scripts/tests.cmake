@@ -105,8 +105,9 @@ set_tests_properties(script.plate-damping PROPERTIES TIMEOUT 600 LABELS script)
 
 # Exact restart (edp/restart.edp): saving after N steps and resuming, in the
 # same process and in a new one, reproduces the uninterrupted run bit for bit,
-# for every scheme and mass treatment; the disc and the inclined ground have
-# rotated contact nodes (inexact round trip through user coordinates).
+# for every scheme and mass treatment and with either solver in one process;
+# the disc and the inclined ground have rotated contact nodes (inexact round
+# trip through user coordinates).
 # nbm_restart_test(<variant> <labels>): variant = "name;restart.edp args...".
 function(nbm_restart_test variant labels)
   list(POP_FRONT variant name)
@@ -125,7 +126,9 @@ foreach(variant
     "damped-newmark;-rayleighM;2;-rayleighK;1e-4"
     "damped-redistributed;-mass;redistributed;-rayleighM;2;-rayleighK;1e-4"
     "damped-explicit;-scheme;explicit;-rayleighM;2"
-    "damped-moreau-jean;-scheme;moreau-jean;-restitution;0.5;-rayleighM;2;-rayleighK;1e-4")
+    "damped-moreau-jean;-scheme;moreau-jean;-restitution;0.5;-rayleighM;2;-rayleighK;1e-4"
+    "mumps;-solver;mumps"
+    "mumps-redistributed;-solver;mumps;-mass;redistributed")
   nbm_restart_test("${variant}" script)
 endforeach()
 
