@@ -8,8 +8,14 @@
 // faces); SCHEME newmark (mass on the contact nodes), massless or explicit;
 // STEPS of the sweep (default 20, the benchmarks'); --free: the obstacle out
 // of reach (free flight); --no-plain: no plain factorization and step (the
-// ratios are then not printed; the 1e6-dof block cannot hold both).
+// ratios are then not printed; the 1e6-dof block cannot hold both);
+// --mumps: both sides factored by MUMPS instead of CHOLMOD, on the ranks of
+// mpirun -np N (method.md §4), with MUMPS's estimates of the iteration
+// matrix's factorization and every rank's peak resident size; --estimate:
+// MUMPS's estimates only, no factorization (bench/mumps-scale.sh projects
+// from them), with the order nbm gives MUMPS and with MUMPS's own.
 // Wall-clock times (OpenBLAS's threads work for both sides).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +26,8 @@
 #include <vector>
 
 #include "contact/contact_problem.hpp"
+#include "linalg/mpi_ranks.hpp"
+#include "linalg/mumps_inverse.hpp"
 #include "measure.hpp"
 #include "plain_step.hpp"
 #include "scale_case.hpp"
@@ -42,7 +50,7 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // The plain step (plain_step.hpp), what the benchmarks' ratios divide by,
 // and (implicit) the time of the factorization.
 double plain_step_seconds(const nbm_bench::Case& c, bool explicit_scheme, double dt,
-                          double* factorization) {
+                          const nbm::SparseFactorizer& factorizer, double* factorization) {
   const int steps = 10;
   if (explicit_scheme) {
     nbm_bench::PlainCentralDifference plain(c.a, c.a.M * Vector::Ones(c.a.M.rows()), dt);
@@ -51,7 +59,7 @@ double plain_step_seconds(const nbm_bench::Case& c, bool explicit_scheme, double
     return seconds_since(start) / steps;
   }
   auto start = std::chrono::steady_clock::now();
-  const auto S = nbm::make_cholesky_inverse(c.a.M + (0.25 * dt * dt) * c.a.K, "S");
+  const auto S = factorizer.factor(c.a.M + (0.25 * dt * dt) * c.a.K, "S");
   *factorization = seconds_since(start);
   nbm_bench::PlainNewmark plain(*S, c.a, dt);
   start = std::chrono::steady_clock::now();
@@ -63,10 +71,14 @@ double plain_step_seconds(const nbm_bench::Case& c, bool explicit_scheme, double
 
 int main(int argc, char** argv) {
   std::vector<const char*> args;
-  bool free_flight = false, plain = true;
+  bool free_flight = false, plain = true, mumps = false, estimate = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--free") == 0)
       free_flight = true;
+    else if (std::strcmp(argv[i], "--mumps") == 0)
+      mumps = true;
+    else if (std::strcmp(argv[i], "--estimate") == 0)
+      mumps = estimate = true;
     else if (std::strcmp(argv[i], "--no-plain") == 0)
       plain = false;
     else
@@ -75,7 +87,7 @@ int main(int argc, char** argv) {
   if (args.size() < 5 || args.size() > 7) {
     std::fprintf(stderr,
                  "usage: %s BODY ORDER DOFS PCT newmark|massless|explicit [STEPS [TRAJECTORY]] "
-                 "[--free] [--no-plain]\n",
+                 "[--free] [--no-plain] [--mumps] [--estimate]\n",
                  argv[0]);
     return 2;
   }
@@ -91,19 +103,47 @@ int main(int argc, char** argv) {
   const double dt = explicit_scheme
                         ? nbm_bench::explicit_dt(c.a.K, c.a.M * Vector::Ones(c.a.M.rows()))
                         : kImplicitDt;
-  double factorization = 0, plain_step = 0;
-  if (plain) plain_step = plain_step_seconds(c, explicit_scheme, dt, &factorization);
-
+  const nbm::SparseFactorizer factorizer(mumps ? nbm::SparseSolver::kMumps
+                                               : nbm::SparseSolver::kCholmod);
+  const int rank = mumps ? nbm::mpi_rank(nbm::mpi_world()) : 0;
+  const int ranks = mumps ? nbm::mpi_size(nbm::mpi_world()) : 1;
   nbm_bench::ContactRegion region = nbm_bench::sweeping(nbm_bench::scale_region(pct), c.X, dt);
   if (free_flight) region.gap = kFreeGap;
   const nbm::ContactDescription d = nbm_bench::contact_on(c.X, region);
+  if (mumps) {
+    // The iteration matrix condensed on the contact dofs, as the massless
+    // boundary's stepper factors it (the paper's NBM adds their neighbours).
+    std::vector<Index> schur(d.dofs.begin(), d.dofs.end());
+    std::sort(schur.begin(), schur.end());
+    const nbm::SparseMatrix S = c.a.M + (0.25 * dt * dt) * c.a.K;
+    for (const auto ordering : {nbm::MumpsOrdering::kFillReducing, nbm::MumpsOrdering::kMumpsOwn}) {
+      const auto start = std::chrono::steady_clock::now();
+      const nbm::MumpsEstimate e =
+          nbm::estimate_mumps_factorization(S, "S", schur, nbm::mpi_world(), ordering);
+      if (rank == 0)
+        std::printf("MUMPS %s on %d rank(s): dofs %ld, Schur variables %zu, factor entries "
+                    "%.6g, flops %.6g, memory max %.0f MB, total %.0f MB (analysis %.3g s)\n",
+                    ordering == nbm::MumpsOrdering::kFillReducing ? "estimate" : "own-order estimate",
+                    ranks, static_cast<long>(c.a.K.rows()), schur.size(), e.factor_entries,
+                    e.flops, e.memory_max_mb, e.memory_total_mb, seconds_since(start));
+      if (!estimate) break;  // the comparison only with --estimate
+    }
+    if (estimate) {
+      std::printf("rank %d: peak resident size %.0f MB\n", rank, nbm_bench::status_mb("VmHWM"));
+      return 0;
+    }
+  }
+  double factorization = 0, plain_step = 0;
+  if (plain) plain_step = plain_step_seconds(c, explicit_scheme, dt, factorizer, &factorization);
+
   const double heap = nbm_bench::heap_mb();
   auto start = std::chrono::steady_clock::now();
-  const nbm::ContactProblem problem(
+  nbm::ContactProblem problem(
       c.a.M, c.a.K,
       nbm::ContactSet(c.a.K.rows(), {d.dofs.begin(), d.dofs.end()}, d.normals,
                       Eigen::Map<const Vector>(d.gaps.data(), static_cast<Index>(d.gaps.size()))),
       {}, scheme == "massless" ? &c.X : nullptr);
+  problem.set_factorizer(factorizer);
   std::unique_ptr<nbm::Stepper> stepper;
   if (scheme == "newmark")
     stepper = std::make_unique<nbm::NewmarkStepper>(problem, dt);
@@ -137,6 +177,8 @@ int main(int argc, char** argv) {
   }
   const double held = nbm_bench::heap_mb() - heap;
 
+  std::printf("rank %d: peak resident size %.0f MB\n", rank, nbm_bench::status_mb("VmHWM"));
+  if (rank > 0) return 0;  // the host prints the figures, which every rank holds
   std::printf("dofs %ld, contact nodes %ld, scheme %s%s, dt %.3g\n",
               static_cast<long>(c.a.K.rows()), static_cast<long>(problem.n_contact()),
               scheme.c_str(), free_flight ? " (free flight)" : "", dt);

@@ -176,6 +176,55 @@ TEST(Mumps, MisusedInverseSaysWhat) {
       [&] { inverse->forward_in_place(short_vector); }, {"size 24", "25"});
 }
 
+// MUMPS's analysis (no factorization) against what is known of the factors:
+// a tridiagonal matrix, eliminated in any order that keeps it a path, has
+// a factor of n diagonal and n - 1 subdiagonal entries and costs O(n) flops;
+// a grid's factor holds at least the matrix's lower triangle, and the
+// factorization of the same input then fills at most the space announced.
+TEST(Mumps, EstimatesMatchTheFactorsTheyAnnounce) {
+  const int n = 2000;
+  Sparse T(n, n);
+  std::vector<nbm::Triplet> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 2.0);
+    if (i + 1 < n) {
+      t.emplace_back(i, i + 1, -1.0);
+      t.emplace_back(i + 1, i, -1.0);
+    }
+  }
+  T.setFromTriplets(t.begin(), t.end());
+  const nbm::MumpsEstimate e = nbm::estimate_mumps_factorization(T, "T", {}, nbm::mpi_self());
+  EXPECT_GE(e.factor_entries, 2.0 * n - 1);
+  EXPECT_LE(e.factor_entries, 3.0 * n);
+  EXPECT_GT(e.flops, 0.0);
+  EXPECT_LE(e.flops, 20.0 * n);
+  EXPECT_GT(e.memory_max_mb, 0.0);
+  EXPECT_EQ(e.memory_max_mb, e.memory_total_mb);  // one rank
+
+  std::mt19937 rng(5);
+  const Sparse X = grid_spd(30, 30, rng);
+  const std::vector<Index> schur = {3, 400, 899};
+  const nbm::MumpsEstimate g = nbm::estimate_mumps_factorization(X, "X", schur, nbm::mpi_self());
+  double lower = 0;  // X's lower triangle outside the Schur variables' rows and columns
+  for (Index j = 0; j < X.outerSize(); ++j)
+    for (Sparse::InnerIterator it(X, j); it; ++it)
+      if (it.row() >= j && std::count(schur.begin(), schur.end(), it.row()) == 0 &&
+          std::count(schur.begin(), schur.end(), j) == 0)
+        ++lower;
+  EXPECT_GE(g.factor_entries, lower);
+  const auto inverse = nbm::make_mumps_inverse(X, "X", schur, nbm::mpi_self());
+  // The estimate is the space MUMPS reserves for the factors: at least the
+  // entries the factorization then reports, and not wildly more.
+  const double schur_entries = 0.5 * 3 * 4;  // the dense factor of S_X, counted by factor_entries()
+  const double effective = inverse->factor_entries() - schur_entries;
+  EXPECT_GE(g.factor_entries, effective);
+  EXPECT_LE(g.factor_entries, 1.5 * effective);
+
+  nbm_test::expect_throw_with<nbm::InputError>(
+      [&] { nbm::estimate_mumps_factorization(Sparse(3, 4), "the matrix Y", {}, nbm::mpi_self()); },
+      {"the matrix Y", "square"});
+}
+
 // A plate on an inclined ground, dropped and bouncing (rotated contact
 // nodes, contacts opening and closing), integrated with `solver`.
 std::vector<std::vector<double>> plate_run(nbm::SparseSolver solver, const std::string& mass,

@@ -18,6 +18,14 @@ namespace {
 int& icntl(DMUMPS_STRUC_C& id, int i) { return id.icntl[i - 1]; }
 int infog(const DMUMPS_STRUC_C& id, int i) { return id.infog[i - 1]; }
 
+// INFOG(1) < 0 is MUMPS's error, known to every rank.
+void check(const DMUMPS_STRUC_C& id, const std::string& what) {
+  if (infog(id, 1) < 0)
+    throw NumericalError("MUMPS failed in " + what + ": INFOG(1) = " + std::to_string(infog(id, 1)) +
+                         ", INFOG(2) = " + std::to_string(infog(id, 2)) +
+                         " (INFOG in the MUMPS user guide)");
+}
+
 // One MUMPS instance, released when its owner goes, also when the owner's
 // constructor throws.
 struct MumpsInstance {
@@ -27,6 +35,9 @@ struct MumpsInstance {
     id.sym = 1;  // symmetric positive definite: LDL^T without pivoting
     id.job = -1;
     dmumps_c(&id);
+    check(id, "initialization");
+    for (int stream = 1; stream <= 3; ++stream) icntl(id, stream) = -1;  // silent
+    icntl(id, 4) = 0;
   }
   ~MumpsInstance() {
     // Collective, like every MUMPS call; after MPI_Finalize (an inverse that
@@ -41,6 +52,81 @@ struct MumpsInstance {
   MumpsInstance& operator=(const MumpsInstance&) = delete;
   DMUMPS_STRUC_C id{};
 };
+
+// The pivot order MUMPS is given (1-based positions: perm[v] is the place
+// of variable v): CHOLMOD's fill-reducing order of the interior, then the
+// Schur variables, which MUMPS eliminates last. With a Schur complement
+// MUMPS's own choice is the minimum degree alone, whose factor of a 3D
+// elasticity matrix is several times larger than nested dissection's
+// (bench/RESULTS-mumps.md); without one, the same order keeps the two
+// libraries' factors alike.
+std::vector<int> pivot_positions(const SparseMatrix& X, const std::vector<Index>& schur) {
+  const Index n = X.rows();
+  std::vector<Index> interior_index(static_cast<std::size_t>(n), 0), interior;
+  for (Index v : schur) interior_index[static_cast<std::size_t>(v)] = -1;
+  for (Index v = 0; v < n; ++v)
+    if (interior_index[static_cast<std::size_t>(v)] == 0) {
+      interior_index[static_cast<std::size_t>(v)] = static_cast<Index>(interior.size());
+      interior.push_back(v);
+    }
+  std::vector<Triplet> entries;
+  entries.reserve(static_cast<std::size_t>(X.nonZeros()));
+  for (Index j = 0; j < X.outerSize(); ++j)
+    for (SparseMatrix::InnerIterator it(X, j); it; ++it) {
+      const Index r = interior_index[static_cast<std::size_t>(it.row())];
+      const Index c = interior_index[static_cast<std::size_t>(j)];
+      if (r >= 0 && c >= 0) entries.emplace_back(r, c, it.value());
+    }
+  const Index ni = static_cast<Index>(interior.size());
+  SparseMatrix X_II(ni, ni);
+  X_II.setFromTriplets(entries.begin(), entries.end());
+  std::vector<int> perm(static_cast<std::size_t>(n));
+  int position = 0;
+  for (Index k : fill_reducing_order(X_II))
+    perm[static_cast<std::size_t>(interior[static_cast<std::size_t>(k)])] = ++position;
+  for (Index v : schur) perm[static_cast<std::size_t>(v)] = ++position;
+  return perm;
+}
+
+// The input MUMPS reads on the host (rank 0): the lower triangle of X,
+// 1-based, the pivot order and the Schur variables; MUMPS reads it while it
+// analyses and factors, so it lives in the caller's scope.
+struct HostInput {
+  HostInput(DMUMPS_STRUC_C& id, int rank, const SparseMatrix& X, const std::vector<Index>& schur,
+            MumpsOrdering ordering = MumpsOrdering::kFillReducing) {
+    if (rank == 0) {
+      if (ordering == MumpsOrdering::kFillReducing) {
+        perm = pivot_positions(X, schur);
+        id.perm_in = perm.data();
+        icntl(id, 7) = 1;  // the order given in perm_in
+      }
+      rows.reserve(static_cast<std::size_t>(X.nonZeros() / 2 + X.rows()));
+      for (Index j = 0; j < X.outerSize(); ++j)
+        for (SparseMatrix::InnerIterator it(X, j); it; ++it)
+          if (it.row() >= j) {
+            rows.push_back(static_cast<int>(it.row() + 1));
+            cols.push_back(static_cast<int>(j + 1));
+            values.push_back(it.value());
+          }
+      id.n = static_cast<int>(X.rows());
+      id.nnz = static_cast<int64_t>(values.size());
+      id.irn = rows.data();
+      id.jcn = cols.data();
+      id.a = values.data();
+    }
+    if (!schur.empty()) {
+      icntl(id, 19) = 1;  // the Schur complement, centralised on the host
+      id.size_schur = static_cast<int>(schur.size());
+      for (Index v : schur) schur_list.push_back(static_cast<int>(v + 1));
+      id.listvar_schur = schur_list.data();
+    }
+  }
+  std::vector<int> rows, cols, schur_list, perm;
+  std::vector<double> values;
+};
+
+// MUMPS's counts: a negative INFOG is in millions.
+double count(int value) { return value >= 0 ? value : -1e6 * static_cast<double>(value); }
 
 // A fingerprint of column-major doubles for check_same_on_every_rank: two
 // weighted sums that a changed, moved or swapped entry changes.
@@ -70,35 +156,9 @@ class MumpsInverse final : public CholeskyInverse {
     const Index m = static_cast<Index>(schur_.size());
     for (Index k = 0; k < m; ++k) position_[schur_[k]] = k;
 
-    check("initialization");
-    for (int stream = 1; stream <= 3; ++stream) icntl(id_, stream) = -1;  // silent
-    icntl(id_, 4) = 0;
-
-    // The lower triangle on the host, 1-based; MUMPS reads it only while it
-    // factors, so it lives in this scope.
-    std::vector<int> rows, cols, schur_list;
-    std::vector<double> values;
-    if (rank_ == 0) {
-      rows.reserve(static_cast<std::size_t>(X.nonZeros() / 2 + n_));
-      for (Index j = 0; j < X.outerSize(); ++j)
-        for (SparseMatrix::InnerIterator it(X, j); it; ++it)
-          if (it.row() >= j) {
-            rows.push_back(static_cast<int>(it.row() + 1));
-            cols.push_back(static_cast<int>(j + 1));
-            values.push_back(it.value());
-          }
-      id_.n = static_cast<int>(n_);
-      id_.nnz = static_cast<int64_t>(values.size());
-      id_.irn = rows.data();
-      id_.jcn = cols.data();
-      id_.a = values.data();
-    }
+    const HostInput input(id_, rank_, X, schur_);
     Matrix S;
     if (m > 0) {
-      icntl(id_, 19) = 1;  // the Schur complement, centralised on the host
-      id_.size_schur = static_cast<int>(m);
-      for (Index v : schur_) schur_list.push_back(static_cast<int>(v + 1));
-      id_.listvar_schur = schur_list.data();
       S = Matrix::Zero(m, m);
       if (rank_ == 0) id_.schur = S.data();
     }
@@ -106,12 +166,12 @@ class MumpsInverse final : public CholeskyInverse {
     dmumps_c(&id_);
     if (infog(id_, 1) == -10 || infog(id_, 12) > 0)
       throw NumericalError(what + " is not positive definite (MUMPS factorization)");
-    check(what + " factorization");
-    factor_entries_ = infog(id_, 29) >= 0 ? static_cast<double>(infog(id_, 29))
-                                          : -1e6 * static_cast<double>(infog(id_, 29));
+    check(id_, what + " factorization");
+    factor_entries_ = count(infog(id_, 29));
     id_.irn = id_.jcn = nullptr;
     id_.a = nullptr;
     id_.listvar_schur = nullptr;
+    id_.perm_in = nullptr;
     id_.schur = nullptr;
     if (m == 0) return;
 
@@ -226,7 +286,7 @@ class MumpsInverse final : public CholeskyInverse {
     icntl(id_, 26) = phase;
     id_.job = 3;
     dmumps_c(&id_);
-    check("solve");
+    check(id_, "solve");
   }
 
   // B's rows on the Schur variables, dense; every entry of B must lie there.
@@ -246,14 +306,6 @@ class MumpsInverse final : public CholeskyInverse {
 
   void broadcast(double* data, Index count) const {
     if (count > 0) MPI_Bcast(data, static_cast<int>(count), MPI_DOUBLE, 0, comm_);
-  }
-
-  // INFOG(1) < 0 is MUMPS's error, known to every rank.
-  void check(const std::string& what) const {
-    if (infog(id_, 1) < 0)
-      throw NumericalError("MUMPS failed in " + what + ": INFOG(1) = " +
-                           std::to_string(infog(id_, 1)) + ", INFOG(2) = " +
-                           std::to_string(infog(id_, 2)) + " (INFOG in the MUMPS user guide)");
   }
 
   void check_rows(const SparseMatrix& B) const {
@@ -284,9 +336,13 @@ class MumpsInverse final : public CholeskyInverse {
 
 }  // namespace
 
-std::unique_ptr<CholeskyInverse> make_mumps_inverse(const SparseMatrix& X, const std::string& what,
-                                                    std::vector<Index> schur_variables,
-                                                    MpiCommunicator comm) {
+namespace {
+
+// The input both MUMPS calls take: X square, the Schur variables distinct
+// rows in ascending order with at least one row left to factor, and the
+// same X and Schur variables on every rank.
+void check_input(const SparseMatrix& X, const std::string& what,
+                 const std::vector<Index>& schur_variables, MpiCommunicator comm) {
   if (X.rows() != X.cols())
     throw InputError(what + ": " + std::to_string(X.rows()) + " x " + std::to_string(X.cols()) +
                      ", expected a square matrix");
@@ -311,7 +367,29 @@ std::unique_ptr<CholeskyInverse> make_mumps_inverse(const SparseMatrix& X, const
     same.push_back(static_cast<double>(schur_variables.size()));
     check_same_on_every_rank(comm, same, what);
   }
+}
+
+}  // namespace
+
+std::unique_ptr<CholeskyInverse> make_mumps_inverse(const SparseMatrix& X, const std::string& what,
+                                                    std::vector<Index> schur_variables,
+                                                    MpiCommunicator comm) {
+  check_input(X, what, schur_variables, comm);
   return std::make_unique<MumpsInverse>(X, what, std::move(schur_variables), comm);
+}
+
+MumpsEstimate estimate_mumps_factorization(const SparseMatrix& X, const std::string& what,
+                                           const std::vector<Index>& schur_variables,
+                                           MpiCommunicator comm, MumpsOrdering ordering) {
+  check_input(X, what, schur_variables, comm);
+  MumpsInstance mumps(comm);
+  DMUMPS_STRUC_C& id = mumps.id;
+  const HostInput input(id, mpi_rank(comm), X, schur_variables, ordering);
+  id.job = 1;  // analysis
+  dmumps_c(&id);
+  check(id, what + " analysis");
+  return {count(infog(id, 3)), id.rinfog[0], static_cast<double>(infog(id, 16)),
+          static_cast<double>(infog(id, 17))};
 }
 
 std::vector<Index> touched_rows(const SparseMatrix& constraints) {

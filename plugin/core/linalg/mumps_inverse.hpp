@@ -49,6 +49,24 @@ std::unique_ptr<CholeskyInverse> make_mumps_inverse(const SparseMatrix& X, const
                                                     std::vector<Index> schur_variables,
                                                     MpiCommunicator comm);
 
+/// What MUMPS's analysis of X (condensed on `schur_variables`, as
+/// make_mumps_inverse does) expects of its factorization on the ranks of
+/// `comm`: its own estimates, available at sizes whose factorization would
+/// not fit (bench/mumps-scale.sh projects from them).
+struct MumpsEstimate {
+  double factor_entries;   ///< space for the factors in doubles, all ranks (INFOG(3))
+  double flops;            ///< of the elimination, all ranks (RINFOG(1))
+  double memory_max_mb;    ///< MUMPS's data on the rank that needs most, in core (INFOG(16))
+  double memory_total_mb;  ///< the same summed over the ranks (INFOG(17))
+};
+/// The pivot order MUMPS factors in: CHOLMOD's fill-reducing order with the
+/// Schur variables last (what make_mumps_inverse uses), or MUMPS's own
+/// choice (with a Schur complement: minimum degree), for comparison.
+enum class MumpsOrdering { kFillReducing, kMumpsOwn };
+MumpsEstimate estimate_mumps_factorization(
+    const SparseMatrix& X, const std::string& what, const std::vector<Index>& schur_variables,
+    MpiCommunicator comm, MumpsOrdering ordering = MumpsOrdering::kFillReducing);
+
 /// The rows in which `constraints` has entries (ascending): the Schur
 /// variables a constrained solver with these constraints needs.
 std::vector<Index> touched_rows(const SparseMatrix& constraints);

@@ -231,6 +231,24 @@ class CholmodInverse final : public CholeskyInverse {
 
 }  // namespace
 
+std::vector<Index> fill_reducing_order(const SparseMatrix& X) {
+  cholmod_common common;
+  cholmod_start(&common);
+  SparseMatrix A = X;
+  A.makeCompressed();
+  cholmod_sparse view = lower_view(A);
+  cholmod_factor* L = cholmod_analyze(&view, &common);
+  if (L == nullptr) {
+    cholmod_finish(&common);
+    throw NumericalError("CHOLMOD could not order a matrix of size " + std::to_string(X.rows()));
+  }
+  const int* perm = static_cast<const int*>(L->Perm);
+  std::vector<Index> order(perm, perm + X.rows());
+  cholmod_free_factor(&L, &common);
+  cholmod_finish(&common);
+  return order;
+}
+
 std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
                                                        const std::string& what) {
   return std::make_unique<CholmodInverse>(X, what, SparseMatrix(X.rows(), 0));

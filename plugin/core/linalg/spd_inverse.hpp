@@ -57,6 +57,12 @@ std::unique_ptr<CholeskyInverse> make_cholesky_inverse(const SparseMatrix& X,
                                                        const std::string& what,
                                                        const SparseMatrix& constraints);
 
+/// CHOLMOD's fill-reducing ordering of the symmetric pattern of X (the best
+/// of the orderings it tries, nested dissection among them): order[k] is the
+/// k-th pivot. For MUMPS (mumps_inverse.cpp), whose own choice with a Schur
+/// complement is the minimum degree alone.
+std::vector<Index> fill_reducing_order(const SparseMatrix& X);
+
 /// Inverse of a positive diagonal matrix D (a lumped mass).
 class DiagonalInverse final : public SpdInverse {
  public:
