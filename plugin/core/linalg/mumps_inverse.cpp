@@ -334,10 +334,6 @@ class MumpsInverse final : public CholeskyInverse {
   mutable Index reduced_columns_ = 0;    // of the forward backward continues
 };
 
-}  // namespace
-
-namespace {
-
 // The input both MUMPS calls take: X square, the Schur variables distinct
 // rows in ascending order with at least one row left to factor, and the
 // same X and Schur variables on every rank.
