@@ -1,14 +1,20 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs every test:
-#   1. ctest in ./build: unit tests, script tests, bad-input catalogue, the
-#      shortened long run, restart and robustness tests, benchmark smoke runs;
-#   2. tests/sanitize.sh: the unit tests, the bad-input catalogue and a subset
-#      of the script tests again under AddressSanitizer + UBSan (./build-sanitize);
+#   1. ctest in ./build: script tests, bad-input catalogue, the shortened long
+#      run, restart and robustness tests, the allocation test, benchmark smoke
+#      runs (built without the other unit tests: -DNBM_BUILD_UNIT_TESTS=OFF);
+#   2. tests/sanitize.sh: the unit tests of the core, under AddressSanitizer +
+#      UBSan (./build-sanitize), and the bad-input catalogue and a subset of the
+#      script tests again. The unit tests compile (gcc spends most of its time
+#      on them) and run in this build only: it checks more (ASan, UBSan,
+#      LeakSanitizer, Eigen's assertions), and compiling them once saves
+#      353 of the optimized build's 667 s (2 cores, at 6823d9d; docs/testing.md);
 #   3. tests/fuzz/run.sh 60: the libFuzzer targets for 60 s in total (./build-fuzz).
 # Every part runs even if an earlier one failed; the last lines are a
 # one-line summary per part, and the exit code is non-zero if any part failed.
 #   bash scripts/test.sh [--no-sanitize] [--no-fuzz] [ctest arguments...]
-# (the options skip a part, for quick runs by hand; .ci/run uses none).
+# (the options skip a part, for quick runs by hand; .ci/run uses none; with
+# --no-sanitize, ctest in ./build runs the unit tests too).
 set -u
 repo=$(cd "$(dirname "$0")/.." && pwd)
 start=$SECONDS
@@ -22,7 +28,10 @@ while [ $# -gt 0 ]; do
 done
 
 bash "$repo/scripts/install-deps.sh" || { echo "test: installing the dependencies failed"; exit 1; }
-if ! bash "$repo/scripts/build.sh"; then
+# The unit tests run in the sanitized build; without it, here.
+unit_tests=OFF
+[ "$run_sanitize" -eq 1 ] || unit_tests=ON
+if ! bash "$repo/scripts/build.sh" -DNBM_BUILD_UNIT_TESTS=$unit_tests; then
   echo "test: build failed"
   exit 1
 fi
