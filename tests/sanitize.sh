@@ -3,10 +3,10 @@
 #   bash tests/sanitize.sh
 #
 # Configures ./build-sanitize (next to ./build) with -DNBM_SANITIZE=ON: gcc
-# compiles the core, the unit tests and the plugin nbm.so with
-# -fsanitize=address,undefined -fno-omit-frame-pointer
-# -fno-sanitize-recover=undefined (-O1 -g1, Eigen's assertions on). Then runs,
-# in one ctest call:
+# compiles the core and the plugin nbm.so with -fsanitize=address,undefined
+# -fno-omit-frame-pointer -fno-sanitize-recover=undefined, the unit tests' own
+# files with -fsanitize=address (plugin/core/CMakeLists.txt says why), all at
+# -O1 -g1 with Eigen's assertions on. Then runs, in one ctest call:
 #   (a) every unit test of the core (instrumented executables; LeakSanitizer
 #       on): scripts/test.sh compiles and runs them here only;
 #   (b) the bad-input FreeFEM tests (ctest -L bad-input: ~80 short runs that
