@@ -6,8 +6,8 @@
 #   2. tests/sanitize.sh: the unit tests of the core, under AddressSanitizer +
 #      UBSan (./build-sanitize), and the bad-input catalogue and a subset of the
 #      script tests again. The unit tests compile (gcc spends most of its time
-#      on them) and run in this build only: it checks more (ASan, UBSan,
-#      LeakSanitizer, Eigen's assertions), and compiling them once saves
+#      on them) and run in this build only: it checks more (ASan, UBSan on
+#      the code under test, LeakSanitizer, Eigen's assertions), and compiling them once saves
 #      353 of the optimized build's 667 s (2 cores, at 6823d9d; docs/testing.md);
 #   3. tests/fuzz/run.sh 60: the libFuzzer targets for 60 s in total (./build-fuzz).
 # Every part runs even if an earlier one failed; the last lines are a
