@@ -40,11 +40,17 @@ Vector static_state(const Region& open) {
   return open.modes * q;
 }
 
+// Vibration energy of an orbit: total energy minus the static state's.
+double vibration_energy(const ReducedField& field, const GrazingOrbit& g,
+                        const PeriodicOrbit& orbit) {
+  const Vector rest = Vector::Zero(g.static_state.size());
+  return orbit.energy_start(3) - field.energies(g.static_state, rest)(3);
+}
+
 // Vibration energy and amplitude of an orbit about the static state.
 BackbonePoint point_of(const ReducedField& field, const GrazingOrbit& g, PeriodicOrbit orbit) {
   BackbonePoint p;
-  const Vector rest = Vector::Zero(g.static_state.size());
-  p.energy = orbit.energy_start(3) - field.energies(g.static_state, rest)(3);
+  p.energy = vibration_energy(field, g, orbit);
   p.amplitude = (orbit.u0 - g.static_state).cwiseAbs().maxCoeff();
   p.orbit = std::move(orbit);
   return p;
@@ -99,6 +105,42 @@ std::optional<PeriodicOrbit> vertical_start(const ReducedField& field, const Gra
   }
   return std::nullopt;
 }
+
+// The backbone as a family for the driver: distances scaled by the last
+// orbit's vibration amplitude about the static state and its period; it
+// ends past the energy limit, or at an orbit without contact after the
+// first (no switch and no closed contact: an orbit of the open, linear
+// system again; no switch with a contact closed throughout is an orbit of a
+// closed region, and the family goes on).
+class BackboneFamily : public OrbitFamily {
+ public:
+  BackboneFamily(const ReducedField& field, const GrazingOrbit& g, const ShootingOptions& s,
+                 double max_energy)
+      : OrbitFamily(field, s,
+                    [&g](const Vector& u0, double period) {
+                      FamilyScales c;
+                      c.length = (u0 - g.static_state).cwiseAbs().maxCoeff();
+                      c.time = period;
+                      c.velocity = c.length * 2 * M_PI / c.time;
+                      return c;
+                    }),
+        field_(field), g_(g), max_energy_(max_energy) {}
+
+  std::string end(const std::vector<PeriodicOrbit>& orbits) const override {
+    const PeriodicOrbit& last = orbits.back();
+    if (orbits.size() > 1 && last.switches.empty() && last.contact_time == 0)
+      return "the family reached an orbit without contact (back on the linear system)";
+    const double energy = vibration_energy(field_, g_, last);
+    if (energy > max_energy_)
+      return "energy: the last orbit's energy " + str(energy) + " exceeds " + str(max_energy_);
+    return {};
+  }
+
+ private:
+  const ReducedField& field_;
+  const GrazingOrbit& g_;
+  double max_energy_;
+};
 
 }  // namespace
 
@@ -161,61 +203,64 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
   b.grazing = grazing_orbit(field, mode);
   const GrazingOrbit& g = b.grazing;
   b.points.push_back(point_of(field, g, g.orbit));
-
   ShootingOptions shooting;
   shooting.probe = g.probe;
   shooting.half_period = o.half_period;
   shooting.max_iterations = o.max_iterations;
+  const BackboneFamily family(field, g, shooting, o.max_energy);
   // The first secant: from the linear orbit at half the amplitude, on the
   // same affine family u0 = u_s + s a phi, v0 = 0, T = 2 pi / omega.
   PeriodicOrbit previous;
   previous.u0 = 0.5 * (g.static_state + g.orbit.u0);
   previous.v0 = g.orbit.v0;
   previous.period = g.orbit.period;
-  b.stop_reason = "points: " + std::to_string(o.points) + " orbits computed";
-  while (static_cast<long>(b.points.size()) < o.points) {
-    const BackbonePoint& last = b.points.back();
-    if (last.energy > o.max_energy) {
-      b.stop_reason = "energy: the last orbit's energy " + str(last.energy) + " exceeds " +
-                      str(o.max_energy);
-      break;
-    }
-    ContinuationOptions c;
-    c.step = o.step;
-    c.length = last.amplitude;
-    c.time = last.orbit.period;
-    c.velocity = c.length * 2 * M_PI / c.time;
-    PeriodicOrbit next;
-    try {
-      double used;
-      next = shortening_continuation_step(field, previous, last.orbit, shooting, c, used);
-    } catch (const NumericalError& e) {
-      std::optional<PeriodicOrbit> start;
-      if (b.points.size() == 1 && !field.massless_boundary())
-        start = vertical_start(field, g, shooting);
-      if (start) {
-        previous = g.orbit;
-        b.points.push_back(point_of(field, g, std::move(*start)));
-        continue;
-      }
-      b.stop_reason = "the corrector failed at step " + str(o.step / 64) + " after orbit " +
-                      std::to_string(b.points.size() - 1) + ": " + e.what() +
-                      (b.points.size() == 1 && !field.massless_boundary()
-                           ? " (and no orbit at the fixed periods of the vertical start)"
-                           : "");
-      break;
-    }
-    previous = last.orbit;
-    b.points.push_back(point_of(field, g, std::move(next)));
-    // No switch and no contact: an orbit of the open (linear) system again.
-    // (No switch with a contact closed throughout is an orbit of a closed
-    // region: the family goes on.)
-    const PeriodicOrbit& added = b.points.back().orbit;
-    if (added.switches.empty() && added.contact_time == 0) {
-      b.stop_reason = "the family reached an orbit without contact (back on the linear system)";
-      break;
+  ArclengthCurve<PeriodicOrbit> curve;
+  curve.points.push_back(g.orbit);
+  curve.nodes.push_back(family.node(previous, g.orbit));
+  // Fixed steps in the last orbit's scales; a failed one is retried with
+  // step/4, step/16 and step/64, and the next goes back to `step`.
+  ArclengthOptions a;
+  a.step = a.max_step = o.step;
+  a.min_step = o.step / 64;
+  a.shrink = 4;
+  a.growth = 64;
+  a.easy_iterations = std::numeric_limits<int>::max();
+  // The first step takes the linear family's direction, which is not the
+  // nonsmooth family's tangent (with mass on the contact nodes that one is
+  // vertical: the corrected point lies far from the predictor). From the
+  // second on, a point farther than twice the step jumped to another branch
+  // (round-off can decide where an unguarded corrector lands).
+  a.max_points = static_cast<int>(std::min<long>(o.points, 2));
+  continue_curve(family, a, curve);
+  if (curve.stop == ArclengthStop::step_too_small && curve.points.size() == 1 &&
+      !field.massless_boundary()) {
+    if (std::optional<PeriodicOrbit> start = vertical_start(field, g, shooting)) {
+      curve.nodes.push_back(family.node(g.orbit, *start));
+      curve.points.push_back(std::move(*start));
+    } else {
+      curve.reason += " (and no orbit at the fixed periods of the vertical start)";
     }
   }
+  if (curve.points.size() == 2) {
+    a.max_points = static_cast<int>(std::min<long>(o.points, std::numeric_limits<int>::max()));
+    a.max_jump = 2;
+    continue_curve(family, a, curve);
+  }
+  switch (curve.stop) {
+    case ArclengthStop::max_points:
+      b.stop_reason = "points: " + std::to_string(o.points) + " orbits computed";
+      break;
+    case ArclengthStop::step_too_small:
+      b.stop_reason = "the corrector failed at step " + str(o.step / 64) + " after orbit " +
+                      std::to_string(curve.points.size() - 1) + ": " + curve.reason;
+      break;
+    case ArclengthStop::ended:
+    case ArclengthStop::bound:  // no bound on a backbone
+      b.stop_reason = curve.reason;
+      break;
+  }
+  for (std::size_t k = 1; k < curve.points.size(); ++k)
+    b.points.push_back(point_of(field, g, std::move(curve.points[k])));
   mark_events(b.points);
   return b;
 }

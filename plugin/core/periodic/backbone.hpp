@@ -54,10 +54,13 @@ struct Backbone {
 };
 
 /// The backbone from the grazing orbit of `mode`: pseudo-arclength
-/// continuation (continuation.hpp) whose first secant is the linear family's
-/// direction (from the same mode's orbit at half the grazing amplitude, an
-/// exact orbit of the affine linear family): beyond grazing the orbits
-/// leave the linear family, which penetrates the obstacle. With mass on the
+/// continuation (the driver of arclength_continuation.hpp on the family of
+/// continuation.hpp) whose first secant is the linear family's direction
+/// (from the same mode's orbit at half the grazing amplitude, an exact
+/// orbit of the affine linear family): beyond grazing the orbits leave the
+/// linear family, which penetrates the obstacle. From the second step on, a
+/// corrected orbit farther than twice the step is rejected (a jump to
+/// another branch) and the step retried shorter. With mass on the
 /// contact nodes, if that first step fails, the first orbit past grazing is
 /// sought at fixed periods just below the linear one (the vertical start,
 /// backbone.cpp; method.md §6). Ends after

@@ -5,13 +5,13 @@
 #include <cmath>
 #include <sstream>
 #include <string>
-#include <tuple>
 
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
 #include "base/errors.hpp"
 #include "linalg/dense_eigen.hpp"
+#include "periodic/arclength_continuation.hpp"
 #include "periodic/gauss_newton.hpp"
 
 namespace nbm {
@@ -30,9 +30,10 @@ const char* parameter_name(ForcedParameter p) {
   return p == ForcedParameter::frequency ? "omega" : "amplitude scale";
 }
 
-// The continuation problem in the scaled unknowns y = (u0 / L, v0 / V, p / P)
-// (method.md §9, "Continuation of forced orbits").
-class ScaledProblem {
+// The forced response as a curve for the arclength driver, in the scaled
+// unknowns y = (u0 / L, v0 / V, p / P) (method.md §9, "Continuation of
+// forced orbits"); its weights are ones.
+class ScaledProblem : public ArclengthProblem<ForcedPoint> {
  public:
   ScaledProblem(const ReducedField& field, const Damping& damping, const HarmonicLoad& load,
                 const ForcedContinuationOptions& o, double L, double V, double P)
@@ -114,8 +115,8 @@ class ScaledProblem {
   }
 
   /// Newton on the bordered system from `guess`. Throws NumericalError.
-  GaussNewtonResult correct(const Vector& guess, const Vector& border, double target, int m,
-                            int max_iterations) const {
+  GaussNewtonResult newton(const Vector& guess, const Vector& border, double target, int m,
+                           int max_iterations) const {
     GaussNewtonOptions gn;
     gn.period_index = -1;
     gn.tolerance = o_.shooting.tolerance;
@@ -128,6 +129,27 @@ class ScaledProblem {
         [&](const Vector& y, bool jac) { return evaluate(y, jac, border, target, m); }, guess,
         gn);
   }
+
+  /// The driver's corrector: Newton for subharmonic m, the tangent oriented
+  /// along the secant from `from` (at a corner of a nonsmooth curve the
+  /// tangent may turn by more than 90 degrees, and orienting it along
+  /// from's would send the curve back), the analysed point.
+  ArclengthCorrection<ForcedPoint> correct(const Vector& guess, const Vector& border,
+                                           double target,
+                                           const ArclengthNode& from) const override {
+    const int m = o_.shooting.subharmonic;
+    const GaussNewtonResult r = newton(guess, border, target, m, o_.corrector_iterations);
+    const Vector secant = r.y - from.y;
+    ArclengthCorrection<ForcedPoint> c;
+    c.y = r.y;
+    c.tangent = tangent(r.last.J, secant.norm() > 0 ? secant : from.tangent);
+    c.iterations = r.iterations;
+    c.point = point(c.y, c.tangent, 0, r.iterations, m);
+    return c;
+  }
+  int event_kinds() const override { return 4; }
+  int indicator(int kind, const ForcedPoint& pt) const override;
+  bool happened(int kind, const ForcedPoint& a, const ForcedPoint& b) const override;
 
   /// The unit tangent at a corrected point: J's top rows (the period map)
   /// annihilate it; with J's last row replaced by `orientation`, the
@@ -202,8 +224,8 @@ int outside(const PeriodicOrbit& o, bool complex_only) {
     return std::abs(mu) > 1 && (!complex_only || !is_real(mu));
   }));
 }
-int indicator(ForcedEventKind kind, const ForcedPoint& pt) {
-  switch (kind) {
+int ScaledProblem::indicator(int kind, const ForcedPoint& pt) const {
+  switch (static_cast<ForcedEventKind>(kind)) {
     case ForcedEventKind::fold: return pt.tangent_parameter > 0 ? 1 : -1;
     case ForcedEventKind::period_doubling: return real_below_minus_one(pt.orbit) % 2;
     case ForcedEventKind::neimark_sacker: return outside(pt.orbit, true);
@@ -211,11 +233,11 @@ int indicator(ForcedEventKind kind, const ForcedPoint& pt) {
   }
   return 0;
 }
-bool happened(ForcedEventKind kind, const ForcedPoint& a, const ForcedPoint& b) {
+bool ScaledProblem::happened(int kind, const ForcedPoint& a, const ForcedPoint& b) const {
   if (indicator(kind, a) == indicator(kind, b)) return false;
   // A complex pair through the unit circle changes the number of multipliers
   // outside it; two real ones colliding into a pair outside it does not.
-  if (kind == ForcedEventKind::neimark_sacker)
+  if (static_cast<ForcedEventKind>(kind) == ForcedEventKind::neimark_sacker)
     return outside(a.orbit, false) != outside(b.orbit, false);
   return true;
 }
@@ -323,175 +345,67 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
     throw InputError(c + "max_bisections must be >= 0, got " + std::to_string(o.max_bisections));
 }
 
-// One step of the curve as the continuation keeps it internally.
-struct Node {
-  Vector y, tangent;
-};
-
-class Continuation {
- public:
-  Continuation(const ScaledProblem& problem, const ForcedContinuationOptions& o, ForcedCurve& curve)
-      : pb_(problem), o_(o), curve_(curve), m_(o.shooting.subharmonic) {}
-
-  /// The corrected point from `guess` on the border row . y = target, with
-  /// its tangent oriented away from node k (along the secant from k: at a
-  /// corner of a nonsmooth curve the tangent may turn by more than 90
-  /// degrees, and orienting it along k's would send the curve back).
-  /// Throws NumericalError.
-  std::pair<ForcedPoint, Node> solve(const Node& k, const Vector& guess, const Vector& row,
-                                     double target) const {
-    const GaussNewtonResult r = pb_.correct(guess, row, target, m_, o_.corrector_iterations);
-    const Vector secant = r.y - k.y;
-    Node node{r.y, pb_.tangent(r.last.J, secant.norm() > 0 ? secant : k.tangent)};
-    return {pb_.point(node.y, node.tangent, 0, r.iterations, m_), node};
+// The driver's event as the curve reports it: where (the bisected bracket's
+// end, or interpolated), the critical multiplier, a description.
+ForcedEvent forced_event(const ScaledProblem& problem, const ForcedContinuationOptions& o,
+                         const ArclengthCurve<ForcedPoint>& curve,
+                         const ArclengthEvent<ForcedPoint>& bracket) {
+  const auto kind = static_cast<ForcedEventKind>(bracket.kind);
+  const Index k = bracket.point;
+  const ForcedPoint &pa = curve.points[k], &pb = curve.points[k + 1];
+  const ArclengthNode &a = curve.nodes[k], &b = curve.nodes[k + 1];
+  ForcedEvent e;
+  e.kind = kind;
+  e.point = k;
+  e.bisected = bracket.bisected;
+  if (bracket.bisected) {
+    e.parameter = bracket.past.parameter;
+    e.arclength = pa.arclength + bracket.hi;
+  } else if (kind == ForcedEventKind::fold && bracket.lo == 0 && bracket.hi == bracket.span) {
+    // The vertex of the parabola p(sigma) whose slope is linear between the
+    // two points' dp/dsigma (scaled): the chord would cut the turning
+    // parameter short.
+    const double slope_a = a.tangent(problem.p_index()),
+                 slope_b = b.tangent(problem.p_index()) / b.tangent.dot(a.tangent);
+    const double s = bracket.span * slope_a / (slope_a - slope_b);
+    e.parameter = pa.parameter + problem.parameter_scale() * slope_a * s / 2;
+    e.arclength = pa.arclength + s;
+  } else {
+    // The middle of the bracket, on the chord between the two points.
+    const double s = 0.5 * (bracket.lo + bracket.hi);
+    e.parameter = pa.parameter + (s / bracket.span) * (pb.parameter - pa.parameter);
+    e.arclength = pa.arclength + s;
   }
-  /// The corrected point at arclength sigma along the tangent of node k.
-  std::pair<ForcedPoint, Node> at(const Node& k, double sigma, const Vector& guess) const {
-    return solve(k, guess, k.tangent, k.tangent.dot(k.y) + sigma);
-  }
+  e.orbit = bracket.past.orbit;
+  if (kind != ForcedEventKind::grazing) e.multiplier = critical_multiplier(kind, e.orbit);
+  std::ostringstream d;
+  d << to_string(kind) << " at " << parameter_name(o.parameter) << " = " << number(e.parameter)
+    << " between points " << k << " and " << k + 1 << " ("
+    << (e.bisected ? "bisection" : "interpolation") << ")";
+  if (kind != ForcedEventKind::grazing) d << ", multiplier " << e.multiplier;
+  if (kind == ForcedEventKind::grazing)
+    d << ", switches per period " << pa.switches << " -> " << pb.switches;
+  e.description = d.str();
+  return e;
+}
 
-  /// Events between the last two points (indices k, k + 1), located.
-  void events(Index k, const Node& a, const Node& b) {
-    const ForcedPoint &pa = curve_.points[k], &pb = curve_.points[k + 1];
-    const auto first_new = static_cast<std::ptrdiff_t>(curve_.events.size());
-    const double sigma_end = a.tangent.dot(b.y - a.y);
-    for (ForcedEventKind kind : {ForcedEventKind::fold, ForcedEventKind::period_doubling,
-                                 ForcedEventKind::neimark_sacker, ForcedEventKind::grazing}) {
-      if (!happened(kind, pa, pb)) continue;
-      ForcedEvent e;
-      e.kind = kind;
-      e.point = k;
-      double lo = 0, hi = sigma_end;
-      const int left = indicator(kind, pa);
-      ForcedPoint past = pb;
-      bool bisected = o_.locate_events;
-      for (int it = 0; bisected && hi - lo > o_.event_tolerance; ++it) {
-        if (it >= o_.max_bisections) {
-          bisected = false;
-          break;
-        }
-        const double mid = 0.5 * (lo + hi);
-        try {
-          const Vector guess = a.y + (mid / sigma_end) * (b.y - a.y);
-          const ForcedPoint pt = at(a, mid, guess).first;
-          if (indicator(kind, pt) == left) {
-            lo = mid;
-          } else {
-            hi = mid;
-            past = pt;
-            past.arclength = pa.arclength + mid;
-          }
-        } catch (const NumericalError&) {
-          bisected = false;
-        }
-      }
-      e.bisected = bisected;
-      if (bisected) {
-        e.parameter = past.parameter;
-        e.arclength = pa.arclength + hi;
-      } else {
-        if (kind == ForcedEventKind::fold && lo == 0 && hi == sigma_end) {
-          // The vertex of the parabola p(sigma) whose slope is linear
-          // between the two points' dp/dsigma (scaled): the chord would
-          // cut the turning parameter short.
-          const double slope_a = a.tangent(pb_.p_index()),
-                       slope_b = b.tangent(pb_.p_index()) / b.tangent.dot(a.tangent);
-          const double s = sigma_end * slope_a / (slope_a - slope_b);
-          e.parameter = pa.parameter + pb_.parameter_scale() * slope_a * s / 2;
-          e.arclength = pa.arclength + s;
-        } else {
-          // The middle of the bracket, on the chord between the two points.
-          const double s = 0.5 * (lo + hi);
-          e.parameter = pa.parameter + (s / sigma_end) * (pb.parameter - pa.parameter);
-          e.arclength = pa.arclength + s;
-        }
-      }
-      e.orbit = past.orbit;
-      if (kind != ForcedEventKind::grazing) e.multiplier = critical_multiplier(kind, e.orbit);
-      std::ostringstream d;
-      d << to_string(kind) << " at " << parameter_name(o_.parameter) << " = "
-        << number(e.parameter) << " between points " << k << " and " << k + 1 << " ("
-        << (bisected ? "bisection" : "interpolation") << ")";
-      if (kind != ForcedEventKind::grazing) d << ", multiplier " << e.multiplier;
-      if (kind == ForcedEventKind::grazing)
-        d << ", switches per period " << pa.switches << " -> " << pb.switches;
-      e.description = d.str();
-      curve_.events.push_back(std::move(e));
-    }
-    std::stable_sort(
-        curve_.events.begin() + first_new, curve_.events.end(),
-        [](const ForcedEvent& x, const ForcedEvent& y) { return x.arclength < y.arclength; });
-  }
-
-  void run(const Node& first) {
-    Node last = first;
-    double h = o_.step;
-    std::string last_failure;
-    const double pmin = o_.parameter_min, pmax = o_.parameter_max;
-    while (static_cast<int>(curve_.points.size()) < o_.max_points) {
-      const Node k = last;
-      const double pk = curve_.points.back().parameter, sk = curve_.points.back().arclength;
-      bool on_bound = false;
-      try {
-        auto [pt, node] = at(k, h, k.y + h * k.tangent);
-        const double jump = (node.y - k.y).norm();
-        if (jump > o_.max_jump * h)
-          throw NumericalError("the corrected point jumped " + number(jump / h) +
-                               " times the step (max_jump " + number(o_.max_jump) + ")");
-        const double turn = std::acos(std::clamp(k.tangent.dot(node.tangent), -1.0, 1.0));
-        if (turn > o_.max_turn)
-          throw NumericalError("the tangent turned by " + number(turn) +
-                               " rad in one step (max_turn " + number(o_.max_turn) + ")");
-        if (pt.parameter < pmin || pt.parameter > pmax) {
-          // Land on the bound: the corrector with the border row p = bound,
-          // from the chord's crossing of it.
-          const double bound = pt.parameter < pmin ? pmin : pmax;
-          const double theta = (bound - pk) / (pt.parameter - pk);
-          Vector row = Vector::Zero(pb_.size());
-          row(pb_.p_index()) = 1;
-          std::tie(pt, node) =
-              solve(k, k.y + theta * (node.y - k.y), row, pb_.scaled_parameter(bound));
-          on_bound = true;
-        }
-        pt.arclength = sk + (node.y - k.y).norm();
-        curve_.points.push_back(std::move(pt));
-        last = node;
-        events(static_cast<Index>(curve_.points.size()) - 2, k, last);
-        if (curve_.points.back().corrector_iterations <= o_.easy_iterations)
-          h = std::min(h * o_.growth, o_.max_step);
-      } catch (const NumericalError& err) {
-        last_failure = err.what();
-        h /= 2;
-        if (h < o_.min_step) {
-          curve_.stop = ForcedStop::step_too_small;
-          curve_.stop_reason = "stopped at " + std::string(parameter_name(o_.parameter)) + " = " +
-                               number(pk) + " (point " +
-                               std::to_string(curve_.points.size() - 1) +
-                               "): the corrector failed with the step halved below min_step = " +
-                               number(o_.min_step) + "; last failure: " + last_failure;
-          return;
-        }
-        continue;
-      }
-      if (on_bound) {
-        curve_.stop = ForcedStop::parameter_bound;
-        curve_.stop_reason = "reached the bound " + std::string(parameter_name(o_.parameter)) +
-                             " = " + number(curve_.points.back().parameter);
-        return;
-      }
-    }
-    curve_.stop = ForcedStop::max_points;
-    curve_.stop_reason = "reached max_points = " + std::to_string(o_.max_points) + " at " +
-                         parameter_name(o_.parameter) + " = " +
-                         number(curve_.points.back().parameter);
-  }
-
- private:
-  const ScaledProblem& pb_;
-  const ForcedContinuationOptions& o_;
-  ForcedCurve& curve_;
-  int m_;
-};
+// The driver's options for the forced curve: step control as given, the
+// parameter bounded (in the scaled unknowns).
+ArclengthOptions driver_options(const ScaledProblem& problem, const ForcedContinuationOptions& o) {
+  ArclengthOptions a;
+  a.step = o.step, a.min_step = o.min_step, a.max_step = o.max_step;
+  a.shrink = 2;
+  a.growth = o.growth, a.easy_iterations = o.easy_iterations;
+  a.max_jump = o.max_jump, a.max_turn = o.max_turn;
+  a.max_points = o.max_points;
+  a.bounded = problem.p_index();
+  a.lower = problem.scaled_parameter(o.parameter_min);
+  a.upper = problem.scaled_parameter(o.parameter_max);
+  a.locate_events = o.locate_events;
+  a.event_tolerance = o.event_tolerance;
+  a.max_bisections = o.max_bisections;
+  return a;
+}
 
 }  // namespace
 
@@ -514,7 +428,10 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
 
   // The first tangent: the null vector of the period map's rows, pointing
   // towards the parameter's `direction`.
-  Node node{problem.scaled(first.u0, first.v0, p0), Vector()};
+  ArclengthCurve<ForcedPoint> arc;
+  ArclengthNode node;
+  node.y = problem.scaled(first.u0, first.v0, p0);
+  node.iterations = first.iterations;
   Vector row = Vector::Zero(problem.size());
   row(problem.p_index()) = o.direction;
   const GaussNewtonEvaluation e =
@@ -522,9 +439,43 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
   if (!std::isfinite(e.merit))
     throw NumericalError("forced continuation: the period map failed at the first orbit");
   node.tangent = problem.tangent(e.J, row);
-  curve.points.push_back(problem.point(node.y, node.tangent, 0, first.iterations,
-                                       o.shooting.subharmonic));
-  Continuation(problem, o, curve).run(node);
+  arc.points.push_back(problem.point(node.y, node.tangent, 0, first.iterations,
+                                     o.shooting.subharmonic));
+  arc.nodes.push_back(std::move(node));
+  continue_curve(problem, driver_options(problem, o), arc);
+
+  for (std::size_t k = 0; k < arc.points.size(); ++k)
+    arc.points[k].arclength = arc.nodes[k].arclength;
+  for (const auto& bracket : arc.events)
+    curve.events.push_back(forced_event(problem, o, arc, bracket));
+  // Events in the order met along the curve (several between two points
+  // are ordered by their arclength).
+  std::stable_sort(curve.events.begin(), curve.events.end(),
+                   [](const ForcedEvent& x, const ForcedEvent& y) {
+                     return x.point != y.point ? x.point < y.point : x.arclength < y.arclength;
+                   });
+  curve.points = std::move(arc.points);
+  const std::string name = parameter_name(o.parameter);
+  const double last = curve.points.back().parameter;
+  switch (arc.stop) {
+    case ArclengthStop::bound:
+      curve.stop = ForcedStop::parameter_bound;
+      curve.stop_reason = "reached the bound " + name + " = " + number(last);
+      break;
+    case ArclengthStop::step_too_small:
+      curve.stop = ForcedStop::step_too_small;
+      curve.stop_reason = "stopped at " + name + " = " + number(last) + " (point " +
+                          std::to_string(curve.points.size() - 1) +
+                          "): the corrector failed with the step halved below min_step = " +
+                          number(o.min_step) + "; last failure: " + arc.reason;
+      break;
+    case ArclengthStop::max_points:
+    case ArclengthStop::ended:  // the forced curve has no end of its own
+      curve.stop = ForcedStop::max_points;
+      curve.stop_reason = "reached max_points = " + std::to_string(o.max_points) + " at " + name +
+                          " = " + number(last);
+      break;
+  }
   return curve;
 }
 
@@ -567,7 +518,7 @@ PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Da
   const int m = o.shooting.subharmonic;
   const Vector star = problem.scaled(event.orbit.u0, event.orbit.v0, event.parameter);
   const GaussNewtonResult r =
-      problem.correct(star + amplitude * row, row, row.dot(star) + amplitude, 2 * m,
+      problem.newton(star + amplitude * row, row, row.dot(star) + amplitude, 2 * m,
                       std::max(o.corrector_iterations, o.shooting.max_iterations));
 
   PeriodDoubledOrbit out;

@@ -14,7 +14,8 @@
 //     [ W (X - I)   W dPhi/dp ] [dx]     [ W (Phi(x0, p) - x0) ]
 //     [      tangent^T        ] [dp] = - [ tangent . (y - y_k) - h ]
 //
-// with dPhi/dp by central differences of the exact flow.
+// with dPhi/dp by central differences of the exact flow; the steps, bounds
+// and events are the continuation driver's (arclength_continuation.hpp).
 #pragma once
 
 #include <complex>

@@ -19,7 +19,9 @@ struct BackboneOptions {
   long points = 20;
   /// Pseudo-arclength step in unknowns scaled by the last orbit's vibration
   /// amplitude, velocity scale and period (continuation.hpp); a failed
-  /// corrector retries with step/4, step/16, step/64.
+  /// corrector, or an orbit farther than twice the step from the last (a
+  /// jump to another branch, from the second step on), retries with step/4,
+  /// step/16, step/64.
   double step = 0.05;
   /// Half-period shooting (orbits at rest at 0 and T/2, like the linear
   /// mode's); false: full-period shooting.
