@@ -86,8 +86,7 @@ class ScaledProblem : public ArclengthProblem<ForcedPoint> {
       // Periodicity relative to the orbit's size as in shoot_forced, floored
       // at 1e-6 L so that an orbit at rest (zero load) stays measurable.
       const double ls = std::max({u.norm(), r.u.norm(), 1e-6 * L_, periodic_tiny});
-      e.merit = std::max({(r.u - u).norm() / ls, (r.v - v).norm() / (ls * 2 * M_PI / T),
-                          std::abs(e.R(p_index()))});
+      e.merit = std::max(periodicity_residual(u, v, r.u, r.v, T, ls), std::abs(e.R(p_index())));
       e.size = e.R.norm();
       if (!jacobian) return e;
       const Index N = 2 * n_;

@@ -56,7 +56,7 @@ PeriodicOrbit shoot_forced(const ExactFlow& flow, const Vector& u0, const Vector
     e.R.resize(2 * n);
     e.R << r.u - u, r.v - v;
     const double ls = std::max({u.norm(), r.u.norm(), periodic_tiny});
-    e.merit = std::max((r.u - u).norm() / ls, (r.v - v).norm() / (ls * 2 * M_PI / T));
+    e.merit = periodicity_residual(u, v, r.u, r.v, T, ls);
     e.R = weight.cwiseProduct(e.R);
     e.size = e.R.norm();
     if (jacobian)

@@ -8,6 +8,7 @@
 
 #include "base/errors.hpp"
 #include "linalg/dense_eigen.hpp"
+#include "periodic/periodic_defaults.hpp"
 
 namespace nbm {
 
@@ -45,6 +46,11 @@ void analyse_orbit(const ReducedField& field, PeriodicOrbit& orbit) {
   analyse_orbit(ExactFlow(field), orbit, true);
 }
 
+double periodicity_residual(const Vector& u0, const Vector& v0, const Vector& u1,
+                            const Vector& v1, double T, double length) {
+  return std::max((u1 - u0).norm() / length, (v1 - v0).norm() / (length * 2 * M_PI / T));
+}
+
 void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous) {
   const ReducedField& field = flow.field();
   const double T = orbit.period;
@@ -53,10 +59,8 @@ void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous)
   for (int k = 0; k < kSamples; ++k) times[k] = T * k / kSamples;
   const FlowResult r = flow.integrate(orbit.u0, orbit.v0, T, true, times);
 
-  const double u_scale = std::max(orbit.u0.norm(), 1e-300);
-  const double v_scale = u_scale * 2 * M_PI / T;
-  orbit.periodicity_residual = std::max((r.u - orbit.u0).norm() / u_scale,
-                                        (r.v - orbit.v0).norm() / v_scale);
+  orbit.periodicity_residual = periodicity_residual(orbit.u0, orbit.v0, r.u, r.v, T,
+                                                    std::max(orbit.u0.norm(), periodic_tiny));
   const Index n = field.size();
   double c = 0;
   for (Index k = 0; k < kSamples; ++k)

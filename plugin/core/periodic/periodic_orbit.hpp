@@ -11,6 +11,13 @@
 
 namespace nbm {
 
+/// The relative periodicity residual of a flow from (u0, v0) to (u1, v1)
+/// over the period T: max(|u1 - u0| / length, |v1 - v0| / (length 2 pi / T)),
+/// velocities on the orbit's own time scale. Every periodic solver judges
+/// convergence on it; they differ only in the length.
+double periodicity_residual(const Vector& u0, const Vector& v0, const Vector& u1,
+                            const Vector& v1, double T, double length);
+
 struct PeriodicOrbit {
   Vector u0, v0;       ///< interior state at t = 0
   double period = 0;

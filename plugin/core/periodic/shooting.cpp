@@ -32,12 +32,6 @@ double amplitude_value(const ReducedField& field, const ShootingOptions& o, cons
   return amplitude_value(field, o.kind, o.probe, u, v, period);
 }
 
-// Relative periodicity residual, as in periodic_orbit.hpp.
-double periodicity(const Vector& u0, const Vector& v0, const FlowResult& r, double T) {
-  const double us = std::max(u0.norm(), periodic_tiny), vs = us * 2 * M_PI / T;
-  return std::max((r.u - u0).norm() / us, (r.v - v0).norm() / vs);
-}
-
 }  // namespace
 
 double amplitude_value(const ReducedField& field, ShootingOptions::Amplitude kind, Index probe,
@@ -131,7 +125,8 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
       e.R << r.u - u, r.v - v, v(o.probe), amp;
       weight = Vector::Constant(2 * n + 2, 1 / vs);
       weight.head(n).setConstant(1 / us);
-      e.merit = std::max({periodicity(u, v, r, period), std::abs(v(o.probe)) / vs,
+      e.merit = std::max({periodicity_residual(u, v, r.u, r.v, period, us),
+                          std::abs(v(o.probe)) / vs,
                           std::abs(amp) / amp_scale});
     }
     weight(weight.size() - 1) = 1 / amp_scale;
