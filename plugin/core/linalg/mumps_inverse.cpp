@@ -88,27 +88,44 @@ std::vector<int> pivot_positions(const SparseMatrix& X, const std::vector<Index>
   return perm;
 }
 
-// The input MUMPS reads on the host (rank 0): the lower triangle of X,
-// 1-based, the pivot order and the Schur variables; MUMPS reads it while it
-// analyses and factors, so it lives in the caller's scope.
-struct HostInput {
-  HostInput(DMUMPS_STRUC_C& id, int rank, const SparseMatrix& X, const std::vector<Index>& schur,
-            MumpsOrdering ordering = MumpsOrdering::kFillReducing) {
+// The input MUMPS reads: the lower triangle of X, 1-based; on the host
+// (rank 0) the pivot order and the Schur variables. With several ranks each
+// gives MUMPS the entries of its share of the columns (distributed input,
+// ICNTL(18) = 3): every rank holds X already, and the host neither
+// gathers the whole triangle nor sends it out (bench/RESULTS-mumps.md).
+// MUMPS reads the input while it analyses and factors, so it lives in the
+// caller's scope.
+struct MumpsInput {
+  MumpsInput(DMUMPS_STRUC_C& id, int rank, int ranks, const SparseMatrix& X,
+             const std::vector<Index>& schur,
+             MumpsOrdering ordering = MumpsOrdering::kFillReducing) {
+    const bool distributed = ranks > 1;
     if (rank == 0) {
+      id.n = static_cast<int>(X.rows());
       if (ordering == MumpsOrdering::kFillReducing) {
         perm = pivot_positions(X, schur);
         id.perm_in = perm.data();
         icntl(id, 7) = 1;  // the order given in perm_in
       }
-      rows.reserve(static_cast<std::size_t>(X.nonZeros() / 2 + X.rows()));
-      for (Index j = 0; j < X.outerSize(); ++j)
+    }
+    if (distributed || rank == 0) {
+      const Index first = distributed ? X.outerSize() * rank / ranks : 0;
+      const Index last = distributed ? X.outerSize() * (rank + 1) / ranks : X.outerSize();
+      for (Index j = first; j < last; ++j)
         for (SparseMatrix::InnerIterator it(X, j); it; ++it)
           if (it.row() >= j) {
             rows.push_back(static_cast<int>(it.row() + 1));
             cols.push_back(static_cast<int>(j + 1));
             values.push_back(it.value());
           }
-      id.n = static_cast<int>(X.rows());
+    }
+    if (distributed) {
+      icntl(id, 18) = 3;  // the entries distributed by the user
+      id.nnz_loc = static_cast<int64_t>(values.size());
+      id.irn_loc = rows.data();
+      id.jcn_loc = cols.data();
+      id.a_loc = values.data();
+    } else if (rank == 0) {
       id.nnz = static_cast<int64_t>(values.size());
       id.irn = rows.data();
       id.jcn = cols.data();
@@ -156,7 +173,7 @@ class MumpsInverse final : public CholeskyInverse {
     const Index m = static_cast<Index>(schur_.size());
     for (Index k = 0; k < m; ++k) position_[schur_[k]] = k;
 
-    const HostInput input(id_, rank_, X, schur_);
+    const MumpsInput input(id_, rank_, ranks_count_, X, schur_);
     Matrix S;
     if (m > 0) {
       S = Matrix::Zero(m, m);
@@ -168,8 +185,8 @@ class MumpsInverse final : public CholeskyInverse {
       throw NumericalError(what + " is not positive definite (MUMPS factorization)");
     check(id_, what + " factorization");
     factor_entries_ = count(infog(id_, 29));
-    id_.irn = id_.jcn = nullptr;
-    id_.a = nullptr;
+    id_.irn = id_.jcn = id_.irn_loc = id_.jcn_loc = nullptr;
+    id_.a = id_.a_loc = nullptr;
     id_.listvar_schur = nullptr;
     id_.perm_in = nullptr;
     id_.schur = nullptr;
@@ -380,7 +397,7 @@ MumpsEstimate estimate_mumps_factorization(const SparseMatrix& X, const std::str
   check_input(X, what, schur_variables, comm);
   MumpsInstance mumps(comm);
   DMUMPS_STRUC_C& id = mumps.id;
-  const HostInput input(id, mpi_rank(comm), X, schur_variables, ordering);
+  const MumpsInput input(id, mpi_rank(comm), mpi_size(comm), X, schur_variables, ordering);
   id.job = 1;  // analysis
   dmumps_c(&id);
   check(id, what + " analysis");
