@@ -269,6 +269,14 @@ TEST(ArclengthContinuation, RejectsBadOptionsAndAnEmptyCurve) {
   with([](ArclengthOptions& o) { o.shrink = 1; });
   with([](ArclengthOptions& o) { o.growth = 0.5; });
   with([](ArclengthOptions& o) { o.max_step = INFINITY; });
+  with([](ArclengthOptions& o) { o.max_jump = 0.5; });
+  with([](ArclengthOptions& o) { o.max_turn = 0; });
+  with([](ArclengthOptions& o) { o.max_turn = 4; });
+  with([](ArclengthOptions& o) { o.max_points = 0; });
+  with([](ArclengthOptions& o) { o.event_tolerance = 0; });
+  with([](ArclengthOptions& o) { o.max_bisections = -1; });
+  with([](ArclengthOptions& o) { o.bounded = 2; });  // the circle has 2 unknowns
+  with([](ArclengthOptions& o) { o.bounded = 0, o.lower = 1, o.upper = 0; });
 }
 
 }  // namespace

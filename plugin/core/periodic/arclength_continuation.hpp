@@ -212,6 +212,14 @@ void continue_curve(const ArclengthProblem<Point>& problem, const ArclengthOptio
       !std::isfinite(o.max_step) || !(o.shrink > 1) || !(o.growth >= 1))
     throw InputError("continuation: steps must satisfy 0 < min_step <= step <= max_step < inf, "
                      "shrink > 1 and growth >= 1");
+  if (!(o.max_jump >= 1) || !(o.max_turn > 0) || !(o.max_turn <= M_PI))
+    throw InputError("continuation: max_jump must be >= 1 and max_turn in (0, pi]");
+  if (o.max_points < 1 || !(o.event_tolerance > 0) || o.max_bisections < 0)
+    throw InputError("continuation: max_points must be >= 1, event_tolerance > 0 and "
+                     "max_bisections >= 0");
+  if (o.bounded >= curve.nodes.front().y.size() || !(o.lower < o.upper))
+    throw InputError("continuation: the bounded unknown must be one of the curve's (or -1) and "
+                     "lower < upper");
   double h = o.step;
   std::string last_failure;
   while (static_cast<int>(curve.points.size()) < o.max_points) {
