@@ -153,13 +153,18 @@ ArclengthCorrection<Point> correct(const ArclengthProblem<Point>& problem, const
   return c;
 }
 
-// The corrected point at arclength sigma along the tangent of node k: on the
-// hyperplane <t, y - y_k>_w = sigma, with t the weighted unit tangent.
+// The row b of the hyperplanes across the tangent of a node in the weights
+// w: <t, y - y_k>_w = b . (y - y_k), b = w.^2 .* t, t the weighted unit
+// tangent.
+inline Vector border_row(const Vector& w, const Vector& tangent) {
+  return w.cwiseAbs2().cwiseProduct(unit_tangent(w, tangent));
+}
+
+// The corrected point at arclength sigma along the tangent of node k, whose
+// border row is `border`.
 template <class Point>
 ArclengthCorrection<Point> at(const ArclengthProblem<Point>& problem, const ArclengthNode& k,
-                              double sigma, const Vector& guess) {
-  const Vector w = problem.weights(k.y);
-  const Vector border = w.cwiseAbs2().cwiseProduct(unit_tangent(w, k.tangent));
+                              const Vector& border, double sigma, const Vector& guess) {
   return correct(problem, k, guess, border, border.dot(k.y) + sigma);
 }
 
@@ -169,8 +174,8 @@ void locate_events(const ArclengthProblem<Point>& problem, const ArclengthOption
                    ArclengthCurve<Point>& curve, Index k) {
   const ArclengthNode &a = curve.nodes[k], &b = curve.nodes[k + 1];
   const Point &pa = curve.points[k], &pb = curve.points[k + 1];
-  const Vector w = problem.weights(a.y);
-  const double span = w.cwiseAbs2().cwiseProduct(unit_tangent(w, a.tangent)).dot(b.y - a.y);
+  const Vector border = border_row(problem.weights(a.y), a.tangent);
+  const double span = border.dot(b.y - a.y);
   for (int kind = 0; kind < problem.event_kinds(); ++kind) {
     if (!problem.happened(kind, pa, pb)) continue;
     ArclengthEvent<Point> e{kind, k, 0, span, span, o.locate_events, pb};
@@ -182,7 +187,8 @@ void locate_events(const ArclengthProblem<Point>& problem, const ArclengthOption
       }
       const double mid = 0.5 * (e.lo + e.hi);
       try {
-        ArclengthCorrection<Point> c = at(problem, a, mid, a.y + (mid / span) * (b.y - a.y));
+        ArclengthCorrection<Point> c =
+            at(problem, a, border, mid, a.y + (mid / span) * (b.y - a.y));
         if (problem.indicator(kind, c.point) == left) {
           e.lo = mid;
         } else {
@@ -233,7 +239,8 @@ void continue_curve(const ArclengthProblem<Point>& problem, const ArclengthOptio
     const Vector t = detail::unit_tangent(w, k.tangent);
     bool on_bound = false;
     try {
-      ArclengthCorrection<Point> c = detail::at(problem, k, h, k.y + h * t);
+      ArclengthCorrection<Point> c =
+          detail::at(problem, k, detail::border_row(w, k.tangent), h, k.y + h * t);
       const double jump = w.cwiseProduct(c.y - k.y).norm();
       if (jump > o.max_jump * h)
         throw NumericalError("the corrected point jumped " + detail::number(jump / h) +

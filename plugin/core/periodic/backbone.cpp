@@ -124,20 +124,19 @@ class BackboneFamily : public OrbitFamily {
                       c.velocity = c.length * 2 * M_PI / c.time;
                       return c;
                     }),
-        field_(field), g_(g), max_energy_(max_energy) {}
+        g_(g), max_energy_(max_energy) {}
 
   std::string end(const std::vector<PeriodicOrbit>& orbits) const override {
     const PeriodicOrbit& last = orbits.back();
     if (orbits.size() > 1 && last.switches.empty() && last.contact_time == 0)
       return "the family reached an orbit without contact (back on the linear system)";
-    const double energy = vibration_energy(field_, g_, last);
+    const double energy = vibration_energy(field(), g_, last);
     if (energy > max_energy_)
       return "energy: the last orbit's energy " + str(energy) + " exceeds " + str(max_energy_);
     return {};
   }
 
  private:
-  const ReducedField& field_;
   const GrazingOrbit& g_;
   double max_energy_;
 };

@@ -37,6 +37,9 @@ class OrbitFamily : public ArclengthProblem<PeriodicOrbit> {
                                              double target,
                                              const ArclengthNode& from) const override;
 
+ protected:
+  const ReducedField& field() const { return field_; }
+
  private:
   const ReducedField& field_;
   ShootingOptions shooting_;

@@ -143,7 +143,7 @@ class ScaledProblem : public ArclengthProblem<ForcedPoint> {
     c.y = r.y;
     c.tangent = tangent(r.last.J, secant.norm() > 0 ? secant : from.tangent);
     c.iterations = r.iterations;
-    c.point = point(c.y, c.tangent, 0, r.iterations, m);
+    c.point = point(c.y, c.tangent, r.iterations, m);
     return c;
   }
   int event_kinds() const override { return 4; }
@@ -168,14 +168,13 @@ class ScaledProblem : public ArclengthProblem<ForcedPoint> {
   }
 
   /// The analysed point at y (corrected): orbit, samples for min_gap and peak.
-  ForcedPoint point(const Vector& y, const Vector& tangent, double arclength, int iterations,
-                    int m) const {
+  /// Its arclength is the driver's (set when the curve is done).
+  ForcedPoint point(const Vector& y, const Vector& tangent, int iterations, int m) const {
     ForcedPoint pt;
     pt.parameter = p(y);
     const ExactFlow f = flow(pt.parameter);
     pt.omega = f.forcing().Omega.front();
     pt.scale = o_.parameter == ForcedParameter::amplitude ? pt.parameter : 1.0;
-    pt.arclength = arclength;
     pt.tangent_parameter = tangent(p_index());
     pt.corrector_iterations = iterations;
     pt.orbit.u0 = u(y);
@@ -438,7 +437,7 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
   if (!std::isfinite(e.merit))
     throw NumericalError("forced continuation: the period map failed at the first orbit");
   node.tangent = problem.tangent(e.J, row);
-  arc.points.push_back(problem.point(node.y, node.tangent, 0, first.iterations,
+  arc.points.push_back(problem.point(node.y, node.tangent, first.iterations,
                                      o.shooting.subharmonic));
   arc.nodes.push_back(std::move(node));
   continue_curve(problem, driver_options(problem, o), arc);
