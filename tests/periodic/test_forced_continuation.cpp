@@ -270,7 +270,7 @@ TEST(ForcedContinuation, PeriodDoublingIsConfirmedByThePeriodTwoOrbit) {
   // The period-2 branch continues from there (m = 2, from that orbit at
   // that frequency), into the interval where the period-1 orbit is unstable.
   nbm::ForcedContinuationOptions o2 = sweep.o;
-  o2.shooting.subharmonic = 2;
+  o2.subharmonic = 2;
   o2.max_points = 4;
   const auto doubled = nbm::continue_forced(
       sweep.field, sweep.b.damping(),
@@ -467,7 +467,7 @@ TEST(ForcedContinuation, BadInputIsANamedError) {
   bad([](O& o) { o.difference_step = 0.5; });
   bad([](O& o) { o.corrector_iterations = 0; });
   bad([](O& o) { o.shooting.tolerance = 0; });
-  bad([](O& o) { o.shooting.subharmonic = 0; });
+  bad([](O& o) { o.subharmonic = 0; });
   bad([](O& o) { o.event_tolerance = 0; });
   bad([](O& o) { o.max_bisections = -1; });
   bad([](O& o) { o.parameter = nbm::ForcedParameter::amplitude, o.parameter_min = 1.5; });

@@ -1,6 +1,6 @@
 // Forced harmonic balance (method.md §9): the linear limit against the
 // frequency response of the full damped model, and the forced bilinear
-// oscillator against shooting on the exact flow (forced_orbit.hpp), which it
+// oscillator against shooting on the exact flow (shooting.hpp), which it
 // checks: state, convergence in H, Floquet stability.
 #include <gtest/gtest.h>
 
@@ -12,12 +12,11 @@
 #include "base/errors.hpp"
 #include "bilinear_oscillator.hpp"
 #include "forced_models.hpp"
-#include "periodic/forced_harmonic_balance.hpp"
-#include "periodic/forced_orbit.hpp"
+#include "periodic/harmonic_balance.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 
-using nbm::ForcedHarmonicBalanceOptions;
 using nbm::Index;
 using nbm::Matrix;
 using nbm::Vector;
@@ -26,11 +25,22 @@ using nbm_test::ForcedChain;
 using nbm_test::internal;
 using Complex = std::complex<double>;
 
-ForcedHarmonicBalanceOptions options(int H, int m = 1) {
-  ForcedHarmonicBalanceOptions o;
+// Harmonic balance of the forced problem of subharmonic m with H harmonics.
+nbm::HarmonicBalanceResult balance(const nbm::ExactFlow& flow, const Vector& u0,
+                                   const Vector& v0, int H, int m = 1,
+                                   nbm::HarmonicBalanceOptions o = {}) {
+  const nbm::PeriodicProblem forced(flow, m);
   o.harmonics = H;
-  o.subharmonic = m;
-  return o;
+  return nbm::harmonic_balance(forced, u0, v0, forced.period(), o);
+}
+
+// Shooting on the forced problem (m = 1) after `transient` periods.
+nbm::PeriodicOrbit shoot(const nbm::ExactFlow& flow, const Vector& u0, const Vector& v0,
+                         int transient = 0) {
+  const nbm::PeriodicProblem forced(flow, 1);
+  nbm::ShootingOptions s;
+  s.transient_periods = transient;
+  return nbm::shoot(forced, u0, v0, forced.period(), s);
 }
 
 // With the gap out of reach the orbit is the steady response of the full
@@ -73,8 +83,7 @@ TEST(ForcedHarmonicBalance, LinearLimitIsTheFrequencyResponseOfTheDampedModel) {
       for (int m : {1, 2}) {
         // H = m harmonics: one harmonic of the series per load harmonic
         // suffices (harmonics = 1); H = 2 m for the second.
-        const auto hb = nbm::forced_harmonic_balance(flow, Vector::Zero(n), Vector::Zero(n),
-                                                     options(harmonics * m, m));
+        const auto hb = balance(flow, Vector::Zero(n), Vector::Zero(n), harmonics * m, m);
         const std::string where =
             "w " + std::to_string(w) + " m " + std::to_string(m) + " H " + std::to_string(hb.harmonics);
         EXPECT_TRUE(hb.orbit.switches.empty()) << where;
@@ -122,18 +131,16 @@ TEST(ForcedHarmonicBalance, BilinearOscillatorConvergesToTheShootingOrbit) {
     b.w = w;
     const auto field = b.oscillator().field();
     const nbm::ExactFlow flow(field, b.damping(), b.load());
-    nbm::ForcedShootingOptions s;
-    s.transient_periods = 5;
     // At w = 1.3 three orbits coexist (test_forced_orbits.cpp): the large
     // one with contact.
     const Vector u_guess = Vector::Constant(1, w == 1.3 ? -0.95 : 0.3);
     const Vector v_guess = Vector::Constant(1, w == 1.3 ? 2.7 : 0.0);
-    const auto shot = nbm::shoot_forced(flow, u_guess, v_guess, s);
+    const auto shot = shoot(flow, u_guess, v_guess, 5);
     ASSERT_GE(shot.switches.size(), 2u) << "w " << w;
     std::vector<double> errors;
     nbm::HarmonicBalanceResult hb;
     for (int H : Hs) {
-      hb = nbm::forced_harmonic_balance(flow, shot.u0, shot.v0, options(H));
+      hb = balance(flow, shot.u0, shot.v0, H);
       errors.push_back(state_distance(hb.orbit, shot, w));
       std::cout << "bilinear w " << w << " H " << H << ": state error " << errors.back()
                 << ", truncation " << hb.truncation << ", periodicity residual "
@@ -166,10 +173,10 @@ TEST(ForcedHarmonicBalance, FindsTheUnstableOrbitShootingFlagsUnstable) {
   b.w = 1.3;
   const auto field = b.oscillator().field();
   const nbm::ExactFlow flow(field, b.damping(), b.load());
-  const auto saddle = nbm::shoot_forced(flow, Vector::Constant(1, 0.9 * std::cos(3.0)),
-                                        Vector::Constant(1, -0.9 * b.w * std::sin(3.0)));
+  const auto saddle = shoot(flow, Vector::Constant(1, 0.9 * std::cos(3.0)),
+                            Vector::Constant(1, -0.9 * b.w * std::sin(3.0)));
   ASSERT_FALSE(saddle.stable);
-  const auto hb = nbm::forced_harmonic_balance(flow, saddle.u0, saddle.v0, options(80));
+  const auto hb = balance(flow, saddle.u0, saddle.v0, 80);
   EXPECT_LT(state_distance(hb.orbit, saddle, b.w), 1e-4);
   EXPECT_FALSE(hb.orbit.stable);
   EXPECT_NEAR(std::abs(hb.orbit.multipliers[0]), std::abs(saddle.multipliers[0]), 1e-3);
@@ -185,36 +192,64 @@ TEST(ForcedHarmonicBalance, StiffnessDampingAndSubharmonicBasis) {
   nbm::Damping damping = b.damping();
   damping.b_K = 0.02;
   const nbm::ExactFlow flow(field, damping, b.load());
-  nbm::ForcedShootingOptions s;
-  s.transient_periods = 5;
-  const auto shot = nbm::shoot_forced(flow, Vector::Constant(1, 0.3), Vector::Zero(1), s);
+  const auto shot = shoot(flow, Vector::Constant(1, 0.3), Vector::Zero(1), 5);
   ASSERT_GE(shot.switches.size(), 2u);
-  const auto h40 = nbm::forced_harmonic_balance(flow, shot.u0, shot.v0, options(40));
-  const auto h80 = nbm::forced_harmonic_balance(flow, shot.u0, shot.v0, options(80));
+  const auto h40 = balance(flow, shot.u0, shot.v0, 40);
+  const auto h80 = balance(flow, shot.u0, shot.v0, 80);
   const double e40 = state_distance(h40.orbit, shot, b.w), e80 = state_distance(h80.orbit, shot, b.w);
   std::cout << "bilinear with b_K: state error " << e40 << " (H = 40), " << e80 << " (H = 80)\n";
   EXPECT_LT(e80, e40);
   EXPECT_LT(e80, 1e-3);
   // m = 2, H = 160: the same orbit (period 2 T), odd harmonics zero.
-  const auto sub = nbm::forced_harmonic_balance(flow, shot.u0, shot.v0, options(160, 2));
+  const auto sub = balance(flow, shot.u0, shot.v0, 160, 2);
   EXPECT_DOUBLE_EQ(sub.orbit.period, 2 * shot.period);
   EXPECT_LT((sub.orbit.u0 - h80.orbit.u0).norm(), 1e-10 * h80.orbit.u0.norm());
   EXPECT_LT(sub.coefficients.col(1).norm(), 1e-10 * h80.orbit.u0.norm());
+}
+
+// Harmonic balance is one method of either kind of periodic problem, so
+// the adaptive number of harmonics serves forced orbits too: H doubles from
+// 10 until the truncation estimate is below the tolerance, each Newton
+// solve starting from the last one's series; the result is the direct
+// solve's at the final H, and closer to shooting than the first H's.
+TEST(ForcedHarmonicBalance, AdaptiveHarmonicsDoubleUntilTheTruncationIsSmall) {
+  Bilinear b;
+  b.w = 1.2;
+  const auto field = b.oscillator().field();
+  const nbm::ExactFlow flow(field, b.damping(), b.load());
+  const auto shot = shoot(flow, Vector::Constant(1, 0.3), Vector::Zero(1), 5);
+  for (double tolerance : {1e-3, 1e-4}) {
+    nbm::HarmonicBalanceOptions o;
+    o.adaptive = true;
+    o.truncation_tolerance = tolerance;
+    const auto adaptive = balance(flow, shot.u0, shot.v0, 10, 1, o);
+    const auto first = balance(flow, shot.u0, shot.v0, 10);
+    const auto direct = balance(flow, shot.u0, shot.v0, adaptive.harmonics);
+    std::cout << "adaptive forced harmonic balance, tolerance " << tolerance << ": H = "
+              << adaptive.harmonics << " after " << adaptive.harmonics_tried.size()
+              << " solves, truncation " << adaptive.truncation << "\n";
+    ASSERT_GE(adaptive.harmonics_tried.size(), 2u) << "H = 10 should not be enough";
+    for (std::size_t k = 0; k < adaptive.harmonics_tried.size(); ++k)
+      EXPECT_EQ(adaptive.harmonics_tried[k], 10 << k);
+    EXPECT_LE(adaptive.truncation, tolerance);
+    EXPECT_GT(first.truncation, tolerance);
+    EXPECT_LT((adaptive.orbit.u0 - direct.orbit.u0).norm(), 1e-10 * direct.orbit.u0.norm());
+    EXPECT_LT(state_distance(adaptive.orbit, shot, b.w), state_distance(first.orbit, shot, b.w));
+  }
 }
 
 TEST(ForcedHarmonicBalance, ExactAndSampledIntegrationAgree) {
   Bilinear b;
   const auto field = b.oscillator().field();
   const nbm::ExactFlow flow(field, b.damping(), b.load());
-  const auto exact = nbm::forced_harmonic_balance(flow, Vector::Constant(1, 0.3), Vector::Zero(1),
-                                                  options(10));
-  ForcedHarmonicBalanceOptions aft = options(10);
+  const auto exact = balance(flow, Vector::Constant(1, 0.3), Vector::Zero(1), 10);
+  nbm::HarmonicBalanceOptions aft;
   aft.integration = nbm::HarmonicBalanceOptions::Integration::aft;
   double previous = 1;
   for (int samples : {128, 512, 2048}) {
     aft.aft_samples = samples;
     const auto sampled =
-        nbm::forced_harmonic_balance(flow, Vector::Constant(1, 0.3), Vector::Zero(1), aft);
+        balance(flow, Vector::Constant(1, 0.3), Vector::Zero(1), 10, 1, aft);
     const double gap = (sampled.coefficients - exact.coefficients).norm() /
                        exact.coefficients.norm();
     EXPECT_LT(gap, previous) << samples;
@@ -229,32 +264,49 @@ TEST(ForcedHarmonicBalance, BadOptionsAreNamedErrors) {
   const auto field = b.oscillator().field();
   const nbm::ExactFlow unforced(field);
   const Vector z = Vector::Zero(1);
-  EXPECT_THROW(nbm::forced_harmonic_balance(unforced, z, z, options(5)), nbm::InputError);
+  EXPECT_THROW(balance(unforced, z, z, 5), nbm::InputError);
   const nbm::ExactFlow flow(field, b.damping(), b.load());
-  auto message = [&](const ForcedHarmonicBalanceOptions& o, const Vector& u = Vector::Zero(1)) {
+  auto message = [&](int H, int m, const nbm::HarmonicBalanceOptions& o,
+                     const Vector& u = Vector::Zero(1)) {
     try {
-      nbm::forced_harmonic_balance(flow, u, Vector::Zero(1), o);
+      balance(flow, u, Vector::Zero(1), H, m, o);
     } catch (const nbm::InputError& e) {
       return std::string(e.what());
     }
     return std::string("no error");
   };
-  EXPECT_NE(message(options(1, 2)).find("harmonics H = 1, expected H >= the subharmonic"),
+  EXPECT_NE(message(1, 2, {}).find("harmonics H = 1, expected H >= the subharmonic"),
             std::string::npos);
-  EXPECT_NE(message(options(5, 0)).find("subharmonic order m must be >= 1"), std::string::npos);
-  ForcedHarmonicBalanceOptions o = options(5);
+  EXPECT_NE(message(5, 0, {}).find("subharmonic order m must be >= 1"), std::string::npos);
+  nbm::HarmonicBalanceOptions o;
   o.transient_periods = -1;
-  EXPECT_NE(message(o).find("transient_periods"), std::string::npos);
-  o = options(5);
+  EXPECT_NE(message(5, 1, o).find("transient_periods"), std::string::npos);
+  o = {};
   o.integration = nbm::HarmonicBalanceOptions::Integration::aft;
   o.aft_samples = -1;
-  EXPECT_NE(message(o).find("aft_samples"), std::string::npos);
-  o = options(5);
+  EXPECT_NE(message(5, 1, o).find("aft_samples"), std::string::npos);
+  o = {};
   o.max_iterations = 0;
-  EXPECT_NE(message(o).find("max_iterations"), std::string::npos);
-  EXPECT_NE(message(options(5), Vector::Zero(2)).find("initial state of size 2"),
+  EXPECT_NE(message(5, 1, o).find("max_iterations"), std::string::npos);
+  EXPECT_NE(message(5, 1, {}, Vector::Zero(2)).find("initial state of size 2"), std::string::npos);
+  EXPECT_NE(message(5, 1, {}, Vector::Constant(1, NAN)).find("non-finite"), std::string::npos);
+  // The excitation fixes the period and the time origin: no series even in
+  // time, no amplitude condition, no other period.
+  o = {};
+  o.cosine_only = true;
+  EXPECT_NE(message(5, 1, o).find("cosine_only is an autonomous orbit's"), std::string::npos);
+  o = {};
+  o.amplitude = 0.2;
+  EXPECT_NE(message(5, 1, o).find("the amplitude condition is an autonomous orbit's"),
             std::string::npos);
-  EXPECT_NE(message(options(5), Vector::Constant(1, NAN)).find("non-finite"), std::string::npos);
+  const nbm::PeriodicProblem forced(flow, 1);
+  try {
+    nbm::harmonic_balance(forced, z, z, 0.9 * forced.period(), {});
+    ADD_FAILURE() << "a period that is not the excitation's was accepted";
+  } catch (const nbm::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("forced harmonic balance: the period"),
+              std::string::npos);
+  }
 }
 
 }  // namespace

@@ -17,8 +17,8 @@
 #include "forced_models.hpp"
 #include "linalg/dense_eigen.hpp"
 #include "oscillators.hpp"
-#include "periodic/forced_orbit.hpp"
 #include "periodic/periodic_orbit.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 
@@ -65,9 +65,9 @@ TEST(ForcedOrbit, LinearLimitIsTheFrequencyResponseOfTheDampedModel) {
       v += (Complex(0, W) * U).real();
     }
     for (int m : {1, 2}) {
-      nbm::ForcedShootingOptions o;
-      o.subharmonic = m;
-      const auto orbit = nbm::shoot_forced(flow, Vector::Zero(n), Vector::Zero(n), o);
+      const nbm::PeriodicProblem forced(flow, m);
+      const auto orbit =
+          nbm::shoot(forced, Vector::Zero(n), Vector::Zero(n), forced.period(), {});
       EXPECT_TRUE(orbit.switches.empty());
       EXPECT_LT((orbit.u0 - u.head(n)).norm(), 1e-10 * u.norm()) << "w " << w << " m " << m;
       EXPECT_LT((orbit.v0 - v.head(n)).norm(), 1e-10 * std::max(v.norm(), u.norm() * w))
@@ -101,10 +101,10 @@ nbm::PeriodicOrbit shoot(const Bilinear& b, const nbm::ReducedField& field, int 
                          Vector u0 = Vector::Zero(1), Vector v0 = Vector::Zero(1),
                          int transient_periods = 0) {
   const nbm::ExactFlow flow(field, b.damping(), b.load());
-  nbm::ForcedShootingOptions o;
-  o.subharmonic = m;
+  nbm::ShootingOptions o;
   o.transient_periods = transient_periods;
-  return nbm::shoot_forced(flow, u0, v0, o);
+  const nbm::PeriodicProblem forced(flow, m);
+  return nbm::shoot(forced, u0, v0, forced.period(), o);
 }
 
 TEST(ForcedOrbit, BilinearOscillatorMatchesBruteForceTimeIntegration) {
@@ -237,20 +237,39 @@ TEST(ForcedOrbit, BadInputIsANamedError) {
   Bilinear b;
   const auto field = b.oscillator().field();
   const nbm::ExactFlow unforced(field);
-  EXPECT_THROW(nbm::shoot_forced(unforced, Vector::Zero(1), Vector::Zero(1)), nbm::InputError);
+  EXPECT_THROW(nbm::PeriodicProblem(unforced, 1), nbm::InputError);
   nbm::HarmonicLoad load;
   load.omega = 1.2;
   load.cos = {Eigen::Vector2d(0.2, 0)};
   const nbm::ExactFlow flow(field, nbm::Damping{}, load);
-  nbm::ForcedShootingOptions o;
-  o.subharmonic = 0;
-  EXPECT_THROW(nbm::shoot_forced(flow, Vector::Zero(1), Vector::Zero(1), o), nbm::InputError);
-  o.subharmonic = 1;
+  EXPECT_THROW(nbm::PeriodicProblem(flow, 0), nbm::InputError);
+  const nbm::PeriodicProblem forced(flow, 1);
+  const double T = forced.period();
+  auto message = [&](const nbm::ShootingOptions& o, const Vector& u = Vector::Zero(1),
+                     double period = NAN) {
+    try {
+      nbm::shoot(forced, u, Vector::Zero(1), std::isnan(period) ? T : period, o);
+    } catch (const nbm::InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  nbm::ShootingOptions o;
   o.transient_periods = -1;
-  EXPECT_THROW(nbm::shoot_forced(flow, Vector::Zero(1), Vector::Zero(1), o), nbm::InputError);
-  EXPECT_THROW(nbm::shoot_forced(flow, Vector::Zero(2), Vector::Zero(1)), nbm::InputError);
-  EXPECT_THROW(nbm::shoot_forced(flow, Vector::Constant(1, NAN), Vector::Zero(1)),
-               nbm::InputError);
+  EXPECT_NE(message(o).find("forced orbit: transient_periods must be >= 0"), std::string::npos);
+  EXPECT_NE(message({}, Vector::Zero(2)).find("initial state of size 2"), std::string::npos);
+  EXPECT_NE(message({}, Vector::Constant(1, NAN)).find("non-finite"), std::string::npos);
+  // The excitation fixes the period and the time origin: no other period,
+  // no amplitude or phase condition.
+  EXPECT_NE(message({}, Vector::Zero(1), 1.01 * T).find("is not the excitation's"),
+            std::string::npos);
+  for (int k = 0; k < 3; ++k) {
+    nbm::ShootingOptions c;
+    if (k == 0) c.half_period = true;
+    if (k == 1) c.amplitude = 0.1;
+    if (k == 2) c.arclength = nbm::ShootingOptions::Arclength{Vector::Ones(3), Vector::Zero(3)};
+    EXPECT_NE(message(c).find("are an autonomous orbit's"), std::string::npos) << k;
+  }
 }
 
 }  // namespace

@@ -17,7 +17,7 @@
 #include "bilinear_oscillator.hpp"
 #include "forced_models.hpp"
 #include "periodic/forced_continuation.hpp"
-#include "periodic/forced_orbit.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 
@@ -62,9 +62,10 @@ struct MovingStop {
 
 nbm::PeriodicOrbit shoot(const nbm::ExactFlow& flow, const Vector& u0, const Vector& v0,
                          int transient_periods = 0) {
-  nbm::ForcedShootingOptions o;
+  nbm::ShootingOptions o;
   o.transient_periods = transient_periods;
-  return nbm::shoot_forced(flow, u0, v0, o);
+  const nbm::PeriodicProblem forced(flow, 1);
+  return nbm::shoot(forced, u0, v0, forced.period(), o);
 }
 
 TEST(MovingGapOrbit, OscillatorAgainstAMovingStopMatchesBruteForceTimeIntegration) {

@@ -10,8 +10,8 @@
 
 #include "base/errors.hpp"
 #include "forced_models.hpp"
-#include "periodic/forced_harmonic_balance.hpp"
-#include "periodic/forced_orbit.hpp"
+#include "periodic/harmonic_balance.hpp"
+#include "periodic/shooting.hpp"
 
 namespace {
 
@@ -152,7 +152,8 @@ TEST(StateSpaceFlow, ForcedOrbitWithContactIsTheSteadyStateOfBruteForceIntegrati
     const nbm::ExactFlow flow(field, with_matrix(Cm), load);
     // 150 periods from rest (coarse steps), then shooting from there.
     const Vector x = chain.integrate_damped(Cm, Fc, w, Vector::Zero(2 * n), 150, 8000);
-    const auto orbit = nbm::shoot_forced(flow, x.head(n), x.tail(n));
+    const nbm::PeriodicProblem forced(flow, 1);
+    const auto orbit = nbm::shoot(forced, x.head(n), x.tail(n), forced.period(), {});
     ASSERT_FALSE(orbit.switches.empty()) << "w " << w << ": the orbit should touch the wall";
     Vector x0(2 * n);
     x0 << orbit.u0, orbit.v0;
@@ -200,8 +201,9 @@ TEST(StateSpaceFlow, BadDampingMatricesAreNamedErrors) {
   // Harmonic balance carries Rayleigh damping only: a named error, not a
   // silently undamped orbit.
   const nbm::ExactFlow damped(field, with_matrix(Matrix::Constant(1, 1, 0.3)), load);
-  EXPECT_THROW(nbm::forced_harmonic_balance(damped, Vector::Zero(1), Vector::Zero(1),
-                                            nbm::ForcedHarmonicBalanceOptions{}),
+  const nbm::PeriodicProblem damped_problem(damped, 1);
+  EXPECT_THROW(nbm::harmonic_balance(damped_problem, Vector::Zero(1), Vector::Zero(1),
+                                     damped_problem.period(), {}),
                nbm::InputError);
   ForcedChain free_chain = chain;
   free_chain.ground = 0;

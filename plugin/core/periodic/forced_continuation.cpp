@@ -83,7 +83,7 @@ class ScaledProblem : public ArclengthProblem<ForcedPoint> {
       const FlowResult r = f.integrate(u, v, T, jacobian);
       e.R.resize(size());
       e.R << (r.u - u) / L_, (r.v - v) / V_, border.dot(y) - target;
-      // Periodicity relative to the orbit's size as in shoot_forced, floored
+      // Periodicity relative to the orbit's size as in shoot (forced problem), floored
       // at 1e-6 L so that an orbit at rest (zero load) stays measurable.
       const double ls = std::max({u.norm(), r.u.norm(), 1e-6 * L_, periodic_tiny});
       e.merit = std::max(periodicity_residual(u, v, r.u, r.v, T, ls), std::abs(e.R(p_index())));
@@ -136,7 +136,7 @@ class ScaledProblem : public ArclengthProblem<ForcedPoint> {
   ArclengthCorrection<ForcedPoint> correct(const Vector& guess, const Vector& border,
                                            double target,
                                            const ArclengthNode& from) const override {
-    const int m = o_.shooting.subharmonic;
+    const int m = o_.subharmonic;
     const GaussNewtonResult r = newton(guess, border, target, m, o_.corrector_iterations);
     const Vector secant = r.y - from.y;
     ArclengthCorrection<ForcedPoint> c;
@@ -334,9 +334,9 @@ void check_options(const ReducedField& field, const HarmonicLoad& load, const Ve
                      std::to_string(o.corrector_iterations));
   if (!(o.shooting.tolerance > 0))
     throw InputError(c + "shooting.tolerance must be > 0");
-  if (o.shooting.subharmonic < 1)
-    throw InputError(c + "shooting.subharmonic must be >= 1, got " +
-                     std::to_string(o.shooting.subharmonic));
+  if (o.subharmonic < 1)
+    throw InputError(c + "subharmonic must be >= 1, got " +
+                     std::to_string(o.subharmonic));
   if (!(o.event_tolerance > 0))
     throw InputError(c + "event_tolerance must be > 0, got " + number(o.event_tolerance));
   if (o.max_bisections < 0)
@@ -413,7 +413,8 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
   check_options(field, load, u0, v0, o);
   const double p0 = o.parameter == ForcedParameter::frequency ? load.omega : 1.0;
   const ExactFlow flow0(field, damping, load);
-  const PeriodicOrbit first = shoot_forced(flow0, u0, v0, o.shooting);
+  const PeriodicProblem start(flow0, o.subharmonic);
+  const PeriodicOrbit first = shoot(start, u0, v0, start.period(), o.shooting);
 
   ForcedCurve curve;
   const double omega0 = load.omega;
@@ -433,12 +434,12 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
   Vector row = Vector::Zero(problem.size());
   row(problem.p_index()) = o.direction;
   const GaussNewtonEvaluation e =
-      problem.evaluate(node.y, true, row, row.dot(node.y), o.shooting.subharmonic);
+      problem.evaluate(node.y, true, row, row.dot(node.y), o.subharmonic);
   if (!std::isfinite(e.merit))
     throw NumericalError("forced continuation: the period map failed at the first orbit");
   node.tangent = problem.tangent(e.J, row);
   arc.points.push_back(problem.point(node.y, node.tangent, first.iterations,
-                                     o.shooting.subharmonic));
+                                     o.subharmonic));
   arc.nodes.push_back(std::move(node));
   continue_curve(problem, driver_options(problem, o), arc);
 
@@ -513,7 +514,7 @@ PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Da
   // Bordered corrector on the period-2m map with the condition
   // e . (y - y*) = amplitude: the period-1 orbit (e . (y - y*) = O(amplitude^2)
   // near the event) is excluded by construction.
-  const int m = o.shooting.subharmonic;
+  const int m = o.subharmonic;
   const Vector star = problem.scaled(event.orbit.u0, event.orbit.v0, event.parameter);
   const GaussNewtonResult r =
       problem.newton(star + amplitude * row, row, row.dot(star) + amplitude, 2 * m,
@@ -522,10 +523,10 @@ PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Da
   PeriodDoubledOrbit out;
   out.parameter = problem.p(r.y);
   const ExactFlow flow = problem.flow(out.parameter);
-  ForcedShootingOptions shooting = o.shooting;
-  shooting.subharmonic = 2 * m;
+  ShootingOptions shooting = o.shooting;
   shooting.transient_periods = 0;
-  out.orbit = shoot_forced(flow, problem.u(r.y), problem.v(r.y), shooting);
+  const PeriodicProblem doubled(flow, 2 * m);
+  out.orbit = shoot(doubled, problem.u(r.y), problem.v(r.y), doubled.period(), shooting);
   const FlowResult once =
       flow.integrate(out.orbit.u0, out.orbit.v0, forced_period(flow, m), false);
   Vector x0(2 * n), x1(2 * n);

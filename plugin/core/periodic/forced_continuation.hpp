@@ -4,7 +4,7 @@
 // multipliers, stability and flagged events at every point.
 //
 // A point is a fixed point x0 = (u0, v0) of the period map of the exact flow
-// (forced_orbit.hpp) at a parameter p: the forcing frequency omega
+// (shooting.hpp, a forced problem) at a parameter p: the forcing frequency omega
 // (T = 2 pi m / omega changes with it) or a scale factor on the harmonics of
 // the HarmonicLoad, load and gaps (the constant load F0 and gaps g0 of the
 // field are not scaled).
@@ -24,9 +24,9 @@
 #include <vector>
 
 #include "contact/damping.hpp"
-#include "periodic/forced_orbit.hpp"
 #include "periodic/harmonic_load.hpp"
 #include "periodic/periodic_orbit.hpp"
+#include "periodic/shooting.hpp"
 
 namespace nbm {
 
@@ -69,9 +69,11 @@ struct ForcedContinuationOptions {
   /// Newton iterations of a corrector before it counts as failed (the step
   /// is then halved).
   int corrector_iterations = 12;
-  /// Subharmonic order and Newton tolerance of every corrector; the first
-  /// point is shot with all of it (max_iterations, transient_periods).
-  ForcedShootingOptions shooting;
+  /// Subharmonic order m of every point: its period is 2 pi m / omega.
+  int subharmonic = 1;
+  /// Newton tolerance of every corrector; the first point is shot with all
+  /// of it (max_iterations, transient_periods).
+  ShootingOptions shooting;
   /// Events bracketed between two points are located by bisection on the
   /// arclength down to event_tolerance (scaled); with locate_events false,
   /// or if a corrector fails during the bisection, by interpolation.
@@ -142,7 +144,7 @@ ForcedCurve continue_forced(const ReducedField& field, const Damping& damping,
                             const ForcedContinuationOptions& options);
 
 struct PeriodDoubledOrbit {
-  PeriodicOrbit orbit;      ///< subharmonic 2 m, analysed (shoot_forced)
+  PeriodicOrbit orbit;      ///< subharmonic 2 m, analysed (shoot, forced problem)
   double parameter = 0;     ///< where it was found, near the event's
   /// |Phi_T(x0) - x0| in the scaled unknowns (T the period before doubling):
   /// of the order of `amplitude` for a true period-2 orbit, ~0 for the
@@ -155,7 +157,7 @@ struct PeriodDoubledOrbit {
 /// orbit through x* + amplitude e, e the eigenvector of the multiplier -1 of
 /// its monodromy (at t = 0, where x* is given), found by the bordered
 /// corrector with m doubled and the condition e . (y - y*) = amplitude
-/// (scaled), then shot with shoot_forced. Throws InputError if the event is
+/// (scaled), then shot (shoot, forced problem). Throws InputError if the event is
 /// not a period doubling or amplitude <= 0, NumericalError if no orbit is
 /// found or the one found is the period-1 orbit.
 PeriodDoubledOrbit switch_at_period_doubling(const ReducedField& field, const Damping& damping,

@@ -1,9 +1,9 @@
 #include "periodic/shooting.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
-
 
 #include "base/errors.hpp"
 
@@ -56,86 +56,126 @@ Vector amplitude_gradient(const ReducedField& field, ShootingOptions::Amplitude 
   return grad;
 }
 
-PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v0, double T,
+PeriodicOrbit shoot(const PeriodicProblem& problem, const Vector& u0, const Vector& v0, double T,
                     const ShootingOptions& o) {
+  const ReducedField& field = problem.field();
+  const ExactFlow& flow = problem.flow();
+  const bool forced = problem.forced();
+  const std::string name = forced ? "forced orbit" : "shooting";
   const Index n = field.size();
   if (u0.size() != n || v0.size() != n)
-    throw InputError("shooting: initial state of size " + std::to_string(u0.size()) +
-                     ", expected " + std::to_string(n) + " interior dofs");
-  if (!u0.allFinite() || !v0.allFinite()) throw InputError("shooting: non-finite initial state");
-  if (!(T > 0) || !std::isfinite(T)) throw InputError("shooting: the period guess must be > 0");
-  if (o.probe < 0 || o.probe >= n)
-    throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
-                     std::to_string(n) + ")");
-  if (!(o.tolerance > 0)) throw InputError("shooting: tolerance must be > 0");
-  if (o.arclength) {
-    const auto& a = *o.arclength;
-    if (a.tangent.size() != 2 * n + 1 || a.anchor.size() != 2 * n + 1 || !a.tangent.allFinite() ||
-        !a.anchor.allFinite() || a.tangent.norm() == 0)
-      throw InputError("shooting: the arclength condition needs a non-zero finite tangent and a "
-                       "finite anchor of " + std::to_string(2 * n + 1) + " entries");
+    throw InputError(name + ": initial state of size " + std::to_string(u0.size()) + " and " +
+                     std::to_string(v0.size()) + ", expected " + std::to_string(n) +
+                     " interior dofs");
+  if (!u0.allFinite() || !v0.allFinite()) throw InputError(name + ": non-finite initial state");
+  problem.check_period(T, name);
+  if (!(o.tolerance > 0)) throw InputError(name + ": tolerance must be > 0");
+  if (o.transient_periods < 0)
+    throw InputError(name + ": transient_periods must be >= 0, got " +
+                     std::to_string(o.transient_periods));
+  if (forced) {
+    if (o.half_period || o.arclength || !std::isnan(o.amplitude))
+      throw InputError(name + ": half_period, amplitude and arclength conditions are an "
+                       "autonomous orbit's (the excitation fixes a forced orbit's period and "
+                       "time origin)");
+  } else {
+    if (o.probe < 0 || o.probe >= n)
+      throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
+                       std::to_string(n) + ")");
+    if (o.arclength) {
+      const auto& a = *o.arclength;
+      if (a.tangent.size() != 2 * n + 1 || a.anchor.size() != 2 * n + 1 ||
+          !a.tangent.allFinite() || !a.anchor.allFinite() || a.tangent.norm() == 0)
+        throw InputError("shooting: the arclength condition needs a non-zero finite tangent and "
+                         "a finite anchor of " + std::to_string(2 * n + 1) + " entries");
+    }
+  }
+  Vector u_start = u0, v_start = v0;
+  if (o.transient_periods > 0) {
+    const FlowResult settled = flow.integrate(u0, v0, o.transient_periods * T, false);
+    u_start = settled.u, v_start = settled.v;
   }
 
-  const ExactFlow flow(field);
-  // The arclength condition is judged relative to |tangent| |anchor|.
-  const double target = o.arclength ? 0
-                        : std::isnan(o.amplitude)
-                            ? amplitude_value(field, o, u0, o.half_period ? 0 * v0 : v0, T)
-                            : o.amplitude;
+  const bool half = o.half_period;
+  // The conditions of an autonomous orbit: the phase v0[probe] = 0 (implied
+  // by v0 = 0 with half-period shooting) and the amplitude condition, judged
+  // relative to its target (the arclength condition: to |tangent| |anchor|).
+  const double target = forced || o.arclength ? 0
+                         : std::isnan(o.amplitude)
+                             ? amplitude_value(field, o, u_start, half ? 0 * v_start : v_start, T)
+                             : o.amplitude;
   const double amp_scale =
       o.arclength ? o.arclength->tangent.norm() * std::max(o.arclength->anchor.norm(), periodic_tiny)
                   : std::max(std::abs(target), periodic_tiny);
-  const bool half = o.half_period;
+  // A forced orbit's rows are scaled by a length fixed from the guess (the
+  // larger of |u0| and |u(T)|, non-zero from a guess at rest), so that the
+  // line search compares like with like; an autonomous orbit's by its own
+  // |u0|, which the amplitude condition keeps from vanishing.
+  double fixed_length = 0;
+  if (forced) {
+    const FlowResult first = flow.integrate(u_start, v_start, T, false);
+    fixed_length = std::max({u_start.norm(), first.u.norm(), periodic_tiny});
+  }
 
-  // Unknowns y = (u0, v0, T) or, for half-period shooting, (u0, T/2).
-  Vector y(half ? n + 1 : 2 * n + 1);
-  if (half)
-    y << u0, 0.5 * T;
+  // Unknowns y = (u0, v0) (forced), (u0, v0, T) or, for half-period
+  // shooting, (u0, T/2).
+  Vector y(forced ? 2 * n : half ? n + 1 : 2 * n + 1);
+  if (forced)
+    y << u_start, v_start;
+  else if (half)
+    y << u_start, 0.5 * T;
   else
-    y << u0, v0, T;
+    y << u_start, v_start, T;
   auto unpack = [&](const Vector& y, Vector& u, Vector& v, double& period) {
     u = y.head(n);
     v = half ? Vector::Zero(n) : Vector(y.segment(n, n));
-    period = half ? 2 * y(n) : y(2 * n);
+    period = forced ? T : half ? 2 * y(n) : y(2 * n);
   };
 
   // Residual R (and Jacobian J) at y, rows scaled like the periodicity
-  // residual (displacements by |u0|, velocities by |u0| 2 pi / T, the
-  // amplitude condition by its target), so that the least-squares steps
-  // minimise what convergence is judged on: `merit`, the largest scaled
-  // entry; `size`, the 2-norm the line search decreases.
-  using Evaluation = GaussNewtonEvaluation;
+  // residual (displacements by a length, velocities by that length times
+  // 2 pi / T, the amplitude condition by its target), so that the
+  // least-squares steps minimise what convergence is judged on: `merit`,
+  // the largest scaled entry; `size`, the 2-norm the line search decreases.
   auto evaluate = [&](const Vector& y, bool jacobian) {
-    Evaluation e;
+    GaussNewtonEvaluation e;
     Vector u, v;
     double period;
     unpack(y, u, v, period);
     if (!(period > 0) || !u.allFinite() || !v.allFinite()) return e;
     const FlowResult r = flow.integrate(u, v, half ? 0.5 * period : period, jacobian);
-    const double amp = amplitude_value(field, o, u, v, period) - target;
-    const double us = std::max(u.norm(), periodic_tiny), vs = us * 2 * M_PI / period;
-    Vector weight;
+    const double us = forced ? fixed_length : std::max(u.norm(), periodic_tiny);
+    const double vs = us * 2 * M_PI / period;
+    const Index rows = forced ? 2 * n : half ? n + 1 : 2 * n + 2;
+    Vector weight = Vector::Constant(rows, 1 / vs);
+    double amp = 0;
+    e.R.resize(rows);
     if (half) {
-      e.R.resize(n + 1);
+      amp = amplitude_value(field, o, u, v, period) - target;
       e.R << r.v, amp;
-      weight = Vector::Constant(n + 1, 1 / vs);
       e.merit = std::max(r.v.norm() / vs, std::abs(amp) / amp_scale);
     } else {
-      e.R.resize(2 * n + 2);
-      e.R << r.u - u, r.v - v, v(o.probe), amp;
-      weight = Vector::Constant(2 * n + 2, 1 / vs);
       weight.head(n).setConstant(1 / us);
-      e.merit = std::max({periodicity_residual(u, v, r.u, r.v, period, us),
-                          std::abs(v(o.probe)) / vs,
-                          std::abs(amp) / amp_scale});
+      e.R.head(2 * n) << r.u - u, r.v - v;
+      // Convergence is judged on the orbit's own size (for a forced orbit
+      // the larger of |u0| and |u(T)|, floored), the scaling on `us`.
+      const double length =
+          forced ? std::max({u.norm(), r.u.norm(), periodic_tiny}) : us;
+      e.merit = periodicity_residual(u, v, r.u, r.v, period, length);
+      if (!forced) {
+        amp = amplitude_value(field, o, u, v, period) - target;
+        e.R.tail(2) << v(o.probe), amp;
+        e.merit = std::max({e.merit, std::abs(v(o.probe)) / vs, std::abs(amp) / amp_scale});
+      }
     }
-    weight(weight.size() - 1) = 1 / amp_scale;
+    if (!forced) weight(rows - 1) = 1 / amp_scale;
     e.R = weight.cwiseProduct(e.R);
     e.size = e.R.norm();
     if (!jacobian) return e;
     // Gradient of the amplitude condition in (u0, v0, T).
-    const Vector grad =
-        o.arclength ? o.arclength->tangent : amplitude_gradient(field, o.kind, o.probe, u, v);
+    const Vector grad = forced ? Vector()
+                        : o.arclength ? o.arclength->tangent
+                                      : amplitude_gradient(field, o.kind, o.probe, u, v);
     if (half) {
       // d v(T/2) / d(u0, T/2) = (monodromy_vu, a(T/2)).
       e.J = Matrix::Zero(n + 1, n + 1);
@@ -144,12 +184,14 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
       e.J.bottomLeftCorner(1, n) = grad.head(n).transpose();
       e.J(n, n) = 2 * grad(2 * n);
     } else {
-      e.J = Matrix::Zero(2 * n + 2, 2 * n + 1);
+      e.J = Matrix::Zero(rows, y.size());
       e.J.topLeftCorner(2 * n, 2 * n) = r.monodromy - Matrix::Identity(2 * n, 2 * n);
-      e.J.block(0, 2 * n, n, 1) = r.v;
-      e.J.block(n, 2 * n, n, 1) = r.a;
-      e.J(2 * n, n + o.probe) = 1;
-      e.J.row(2 * n + 1) = grad.transpose();
+      if (!forced) {
+        e.J.block(0, 2 * n, n, 1) = r.v;
+        e.J.block(n, 2 * n, n, 1) = r.a;
+        e.J(2 * n, n + o.probe) = 1;
+        e.J.row(2 * n + 1) = grad.transpose();
+      }
     }
     e.J = weight.asDiagonal() * e.J;
     return e;
@@ -157,20 +199,23 @@ PeriodicOrbit shoot(const ReducedField& field, const Vector& u0, const Vector& v
 
   // Damped Gauss-Newton (gauss_newton.hpp): the period map is only
   // piecewise smooth, and a full step from a rough guess can jump to
-  // another branch (a multiple of the period).
+  // another branch (a multiple of the period). An autonomous system is
+  // overdetermined by one consistent equation (least squares, a trust
+  // region on the period); a forced one is square (LU).
   GaussNewtonOptions gn;
-  gn.period_index = y.size() - 1;
+  gn.period_index = forced ? -1 : y.size() - 1;
   gn.tolerance = o.tolerance;
   gn.max_iterations = o.max_iterations;
-  gn.solver = GaussNewtonOptions::Solver::orthogonal;
-  gn.name = "shooting";
+  gn.solver = forced ? GaussNewtonOptions::Solver::householder
+                     : GaussNewtonOptions::Solver::orthogonal;
+  gn.name = name;
+  if (forced) gn.context = "at omega = " + std::to_string(flow.forcing().Omega.front()) + " ";
   const GaussNewtonResult solution = gauss_newton(evaluate, y, gn);
   PeriodicOrbit orbit;
   orbit.residual_history = solution.merits;
   orbit.iterations = solution.iterations;
-  y = solution.y;
-  unpack(y, orbit.u0, orbit.v0, orbit.period);
-  analyse_orbit(field, orbit);
+  unpack(solution.y, orbit.u0, orbit.v0, orbit.period);
+  analyse_orbit(flow, orbit, !forced);
   return orbit;
 }
 

@@ -8,9 +8,9 @@
 #include "base/errors.hpp"
 #include "linalg/sparse_input.hpp"
 #include "periodic/forced_continuation.hpp"
-#include "periodic/forced_harmonic_balance.hpp"
-#include "periodic/forced_orbit.hpp"
+#include "periodic/harmonic_balance.hpp"
 #include "periodic/orbit_model.hpp"
+#include "periodic/shooting.hpp"
 
 namespace nbm {
 namespace {
@@ -227,7 +227,7 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
   // point's parameter (model_at).
   ForcedOrbitOptions lo = o;
   lo.probe = out.probe;
-  lo.subharmonic = c.shooting.subharmonic;
+  lo.subharmonic = c.subharmonic;
   // The points kept for their reports, without their monodromy matrices
   // (2n x 2n each, which the reports do not read).
   std::vector<ForcedPoint> points = curve.points;
@@ -269,7 +269,7 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
       switch_at_period_doubling(f.model->field(), f.damping, f.load, c, curve, *event,
                                 r.doubling_amplitude);
   if (doubled.parameter < c.parameter_min || doubled.parameter > c.parameter_max)
-    throw NumericalError("doubling: the period-" + std::to_string(2 * c.shooting.subharmonic) +
+    throw NumericalError("doubling: the period-" + std::to_string(2 * c.subharmonic) +
                          " orbit was found at " + r.parameter + " = " +
                          number(doubled.parameter) + ", outside the range [" +
                          number(c.parameter_min) + ", " + number(c.parameter_max) +
@@ -285,7 +285,7 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
   g.damping = f.damping;
   g.load = forced_load(f.load, c.parameter, doubled.parameter);
   ForcedContinuationOptions c2 = c;
-  c2.shooting.subharmonic = 2 * c.shooting.subharmonic;
+  c2.subharmonic = 2 * c.subharmonic;
   c2.shooting.transient_periods = 0;
   c2.length = 0, c2.parameter_scale = 0;
   c2.direction = doubled.parameter >= event->parameter ? 1 : -1;
@@ -298,7 +298,7 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
   o2.omega = g.load.omega;
   d->branch = describe_curve(g, branch, c2, o2, probe, r.parameter, factor);
   o2.probe = probe;
-  o2.subharmonic = c2.shooting.subharmonic;
+  o2.subharmonic = c2.subharmonic;
   std::ostringstream method;
   method.precision(12);
   method << "method branch switching at the period doubling at " << r.parameter << " = "
@@ -321,13 +321,13 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
   const Vector uu = user_vector(u, N, "u"), vv = user_vector(v, N, "v");
   f.model->forced = std::make_unique<ExactFlow>(f.model->field(), f.damping, f.load);
   const Vector u0 = f.model->unknowns(uu), v0 = f.model->unknowns(vv);
+  const PeriodicProblem forced(*f.model->forced, o.subharmonic);
   if (o.method == "harmonic-balance") {
-    ForcedHarmonicBalanceOptions h;
-    h.subharmonic = o.subharmonic;
+    HarmonicBalanceOptions h;
     h.harmonics = o.harmonics;
     h.max_iterations = o.max_iterations;
     h.transient_periods = o.transient_periods;
-    const HarmonicBalanceResult r = forced_harmonic_balance(*f.model->forced, u0, v0, h);
+    const HarmonicBalanceResult r = harmonic_balance(forced, u0, v0, forced.period(), h);
     f.model->shooting = false;
     OrbitReport report;
     report_series(*f.model, r, report);
@@ -340,11 +340,10 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
     return forced_report(f.model, r.orbit, o, o.omega, f.load.harmonics(), line.str(),
                          std::move(report));
   }
-  ForcedShootingOptions s;
-  s.subharmonic = o.subharmonic;
+  ShootingOptions s;
   s.max_iterations = o.max_iterations;
   s.transient_periods = o.transient_periods;
-  const PeriodicOrbit orbit = shoot_forced(*f.model->forced, u0, v0, s);
+  const PeriodicOrbit orbit = shoot(forced, u0, v0, forced.period(), s);
   return forced_report(f.model, orbit, o, o.omega, f.load.harmonics(),
                        "method shooting (period fixed by the excitation, exact flow)");
 }
@@ -387,7 +386,7 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
   c.step = r.step, c.max_step = r.max_step, c.min_step = std::min(c.min_step, r.step);
   c.max_points = r.max_points;
   c.locate_events = r.locate_events;
-  c.shooting.subharmonic = o.subharmonic;
+  c.subharmonic = o.subharmonic;
   c.shooting.max_iterations = o.max_iterations;
   c.shooting.transient_periods = o.transient_periods;
   if (r.doubling && !(r.doubling_amplitude > 0 && std::isfinite(r.doubling_amplitude)))

@@ -1,8 +1,8 @@
 // Forced periodic orbits on the user's dofs (method.md §9): the front end of
-// shoot_forced (forced_orbit.hpp) and forced_harmonic_balance
-// (forced_harmonic_balance.hpp) for the FreeFEM binding, reporting like the
-// autonomous front end (user_orbit.hpp, OrbitReport). Free of Eigen and
-// FreeFEM types.
+// shooting (shooting.hpp) and harmonic balance (harmonic_balance.hpp) on the
+// forced periodic problem (periodic_problem.hpp) for the FreeFEM binding,
+// reporting like the autonomous front end (user_orbit.hpp, OrbitReport).
+// Free of Eigen and FreeFEM types.
 //
 // The excitation is the load
 //     F(t) = F0 + sum_{k=1..H} ( Fc_k cos(k omega t) + Fs_k sin(k omega t) )
@@ -39,11 +39,11 @@ struct ForcedOrbitOptions {
   /// -1: the dof of largest amplitude along the orbit.
   long probe = -1;
   /// Periods of the exact flow run from the guess before Newton (a stable
-  /// orbit's basin; forced_orbit.hpp).
+  /// orbit's basin; shooting.hpp).
   int transient_periods = 0;
   int max_iterations = periodic_max_iterations;
-  /// "shooting" (forced_orbit.hpp) or "harmonic-balance"
-  /// (forced_harmonic_balance.hpp: `harmonics` harmonics of omega / m, the
+  /// "shooting" (shooting.hpp) or "harmonic-balance"
+  /// (harmonic_balance.hpp: `harmonics` harmonics of omega / m, the
   /// guess's flow its initial series; the report then has the coefficients,
   /// the Galerkin residual and the truncation estimate).
   std::string method = "shooting";
