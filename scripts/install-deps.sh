@@ -6,10 +6,11 @@ packages=(
   build-essential cmake pkg-config
   freefem++ libfreefem++-dev gmsh gnuplot-nox
   libeigen3-dev libsuitesparse-dev
+  libspectra-dev                # Lanczos (shift-invert) for the reduced bases' modes
   libmumps-dev libopenmpi-dev openmpi-bin   # MUMPS on MPI: the iteration
                                 # matrix on several ranks under FreeFem++-mpi / ff-mpirun
   libopenblas0-pthread          # optimised BLAS/LAPACK for CHOLMOD and the core's
-  libblas-dev liblapack-dev     # dense kernels (issue 14), see below; -lblas -llapack to link
+  libblas-dev liblapack-dev     # dense kernels, see below; -lblas -llapack to link
   libgtest-dev libbenchmark-dev
   clang-14 libclang-rt-14-dev   # libFuzzer (tests/fuzz/run.sh); gcc's ASan/UBSan
                                 # runtimes (tests/sanitize.sh) come with build-essential

@@ -18,7 +18,7 @@ Fails (exit 1), naming the file, the line and the include, if
     include root plugin/core ("linalg/lcp.hpp", not "lcp.hpp" or "../x");
   - a core file includes a FreeFEM header (ff++.hpp, AFunction.hpp, ...) or
     any header that is not the standard library's, Eigen's, CHOLMOD's,
-    MUMPS's or MPI's (the core's external dependencies:
+    MUMPS's, MPI's or Spectra's (the core's external dependencies:
     plugin/core/linalg/CMakeLists.txt);
   - the CMake links of the layers form a cycle, a layer links a target that
     is not a layer, a folder of the core has no target of its own, or a
@@ -35,10 +35,12 @@ CORE = os.path.join("plugin", "core")
 SOURCE_SUFFIXES = (".hpp", ".cpp", ".h", ".cc", ".ipp", ".inl")
 INCLUDE = re.compile(r'^\s*#\s*include\s*([<"])([^>"]*)[>"]')
 # External headers the core may include: the C++ standard library (no
-# extension), Eigen, CHOLMOD, MUMPS (double precision, C interface), MPI. A
-# new dependency is added here and to the CMake target that links it.
+# extension), Eigen, CHOLMOD, MUMPS (double precision, C interface), MPI,
+# Spectra (header only). A new dependency is added here and to the CMake
+# target that links it.
 EXTERNAL = (re.compile(r"^[a-z_]+$"), re.compile(r"^Eigen/[A-Za-z]+$"),
-            re.compile(r"^cholmod\.h$"), re.compile(r"^dmumps_c\.h$"), re.compile(r"^mpi\.h$"))
+            re.compile(r"^cholmod\.h$"), re.compile(r"^dmumps_c\.h$"), re.compile(r"^mpi\.h$"),
+            re.compile(r"^Spectra/(MatOp/)?[A-Za-z]+\.h$"))
 # FreeFEM's headers (the binding's, plugin/freefem): named as such when met.
 FREEFEM = {"ff++.hpp", "AFunction.hpp", "AFunction_ext.hpp", "AddNewFE.h", "RNM.hpp",
            "fem.hpp", "FESpace.hpp", "FESpacen.hpp", "MatriceCreuse.hpp", "MatriceCreuse_tpl.hpp",
@@ -181,7 +183,8 @@ def main():
                     if kind == "<":
                         if not any(p.match(target) for p in EXTERNAL):
                             errors.append(f"{where}: not a header of the standard library, "
-                                          f"Eigen, CHOLMOD, MUMPS or MPI (the core's dependencies)")
+                                          f"Eigen, CHOLMOD, MUMPS, MPI or Spectra (the core's "
+                                          f"dependencies)")
                         continue
                     target_parts = target.split("/")
                     if (target.startswith("/") or ".." in target_parts or len(target_parts) < 2

@@ -1,13 +1,12 @@
 #include "periodic/reduced_basis.hpp"
 
 #include <cmath>
-#include <random>
 #include <string>
-
-#include <Eigen/SparseCholesky>
 
 #include "base/errors.hpp"
 #include "linalg/dense_eigen.hpp"
+#include "linalg/sparse_eigen.hpp"
+#include "linalg/spd_inverse.hpp"
 
 namespace nbm {
 namespace {
@@ -47,42 +46,20 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   const SparseMatrix KOO = block(problem.K(), interior_, interior_);
   const SparseMatrix MOO = block(problem.M(), interior_, interior_);
   const SparseMatrix KOC = block(problem.K(), interior_, contact_);
-  Eigen::SimplicialLLT<SparseMatrix> KOO_inv(KOO);
-  if (KOO_inv.info() != Eigen::Success)
-    throw NumericalError("reduced basis: K_OO (contact dofs clamped) is not positive definite");
+  const auto KOO_inv = make_cholesky_inverse(KOO, "reduced basis: K_OO (contact dofs clamped)");
 
-  // Lowest fixed-interface modes by subspace iteration with Rayleigh-Ritz.
-  const Index p = std::min<Index>(n, std::max<Index>(2 * modes, modes + 8));
-  std::mt19937 rng(1);
-  std::normal_distribution<double> normal;
-  Matrix X(n, p);
-  for (Index j = 0; j < p; ++j)
-    for (Index i = 0; i < n; ++i) X(i, j) = normal(rng);
-  Vector previous = Vector::Constant(modes, -1);
-  Matrix Phi;
-  Vector w2;
-  for (int it = 0;; ++it) {
-    const Matrix Y = KOO_inv.solve(MOO * X);
-    const Matrix Kr = Y.transpose() * (KOO * Y), Mr = Y.transpose() * (MOO * Y);
-    const SymmetricEigen eig = generalized_symmetric_eigen(0.5 * (Kr + Kr.transpose()),
-                                                         0.5 * (Mr + Mr.transpose()));
-    if (!eig.ok)
-      throw NumericalError("reduced basis: the eigenvalue solver of the subspace failed");
-    X = Y * eig.vectors;
-    w2 = eig.values.head(modes);
-    if (((w2 - previous).cwiseAbs().array() <= 1e-12 * w2.cwiseAbs().array()).all()) {
-      Phi = X.leftCols(modes);
-      break;
-    }
-    if (it > 500) throw NumericalError("reduced basis: subspace iteration did not converge");
-    previous = w2;
-  }
+  // Lowest fixed-interface modes: Lanczos in shift-invert mode on the factor.
+  const SymmetricEigen eig = lowest_eigenpairs(KOO, MOO, *KOO_inv, modes);
+  const Matrix& Phi = eig.vectors;
+  const Vector& w2 = eig.values;
   cutoff_ = std::sqrt(w2.maxCoeff());
 
   // V = [Phi, Psi], made M_OO-orthonormal (dependent columns dropped).
   Matrix V(n, modes + nc);
   V.leftCols(modes) = Phi;
-  V.rightCols(nc) = -KOO_inv.solve(Matrix(KOC));
+  Matrix Psi = -Matrix(KOC);
+  KOO_inv->solve_in_place(Psi);
+  V.rightCols(nc) = Psi;
   const Matrix G = V.transpose() * (MOO * V);
   const SymmetricEigen gram = symmetric_eigen(0.5 * (G + G.transpose()));
   if (!gram.ok)
