@@ -41,7 +41,8 @@
 //              iterations = 50,
 //              method = "shooting",            // or "harmonic-balance" (exact
 //              harmonics = 20,                 // integration, H harmonics of omega / m)
-//              gapCos = gc, gapSin = gs);      // harmonics of the gaps (default: none)
+//              gapCos = gc, gapSin = gs,       // harmonics of the gaps (default: none)
+//              modes = 0);                     // > 0: on a reduced basis (as nbmPeriodicOrbit)
 //   // Fc, Fs: real[int,int] ndof x H (column k-1: harmonic k; either may have
 //   // fewer columns, even 0) or real[int] of size ndof (one harmonic, or size 0:
 //   // none); on the contact dofs they move the nodal boundary relation like the
@@ -50,8 +51,10 @@
 //   // at t = 0 (and at every t = k T: no phase condition, time is the
 //   // excitation's); the period T = 2 pi m / omega is returned. The nbmOrbit*
 //   // functions above read the last forced orbit too (no trivial multiplier:
-//   // stable iff all |mu| < 1); nbmContinueOrbit refuses it. Full interior
-//   // only (no modes=). With mass = "redistributed", aM multiplies the
+//   // stable iff all |mu| < 1); nbmContinueOrbit refuses it. With modes = m,
+//   // on the reduced basis of nbmPeriodicOrbit (nbmOrbitResiduals: the full
+//   // model's residual along the orbit, damping and excitation included).
+//   // With mass = "redistributed", aM multiplies the
 //   // redistributed mass, as in the time steppers. Harmonic balance starts
 //   // from the Fourier series of the exact flow from (u, v) and reports like
 //   // nbmPeriodicOrbit's (nbmOrbitHarmonics; nbmOrbitResiduals: Galerkin
@@ -246,7 +249,8 @@ class ForcedCall : public E_F0mps {
       : handle(e[0]), F0(e[1]), Fc(e[2]), Fs(e[3]), omega(e[4]), u(e[5]), v(e[6]) {}
 
   /// The inputs, checked; `nargs` begins with the six named arguments of
-  /// forced_options, and holds gapCos, gapSin at `gaps`, `gaps` + 1.
+  /// forced_options, and holds gapCos, gapSin, modes at `gaps`, `gaps` + 1,
+  /// `gaps` + 2.
   ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn) const {
     ForcedInputs in;
     in.h = GetAny<ModelHandle*>((*handle)(s));
@@ -263,6 +267,8 @@ class ForcedCall : public E_F0mps {
     if (nargs[gaps]) in.options.gap_cos = harmonics_of(GetAny<H>((*nargs[gaps])(s)), fn, "gapCos");
     if (nargs[gaps + 1])
       in.options.gap_sin = harmonics_of(GetAny<H>((*nargs[gaps + 1])(s)), fn, "gapSin");
+    if (nargs[gaps + 2])
+      in.options.modes = static_cast<int>(GetAny<long>((*nargs[gaps + 2])(s)));
     return in;
   }
 };
@@ -286,7 +292,7 @@ class ForcedOp : public OneOperator {
 template <class H>
 class ForcedOrbit : public ForcedCall<H> {
  public:
-  static const int n_name_param = 10;
+  static const int n_name_param = 11;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -315,6 +321,7 @@ basicAC_F0::name_and_type ForcedOrbit<H>::name_param[] = {
     {"transient", &typeid(long)},   {"iterations", &typeid(long)},
     {"method", &typeid(string*)},   {"harmonics", &typeid(long)},
     {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
+    {"modes", &typeid(long)},
 };
 
 // nbmForcedResponse(S, F0, Fc, Fs, omega, u, v, ...): the named arguments
@@ -343,7 +350,7 @@ void curve_rows(const std::vector<nbm::ForcedResponsePoint>& points, KNM<double>
 template <class H>
 class ForcedResponse : public ForcedCall<H> {
  public:
-  static const int n_name_param = 22;
+  static const int n_name_param = 23;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
 
@@ -431,6 +438,7 @@ basicAC_F0::name_and_type ForcedResponse<H>::name_param[] = {
     {"doubling", &typeid(bool)},    {"doublingAmplitude", &typeid(double)},
     {"doubled", &typeid(KNM<double>*)}, {"doubledFile", &typeid(string*)},
     {"gapCos", &typeid(H)},         {"gapSin", &typeid(H)},
+    {"modes", &typeid(long)},
 };
 
 double orbit_amplitude(ModelHandle* const& h) {

@@ -280,6 +280,61 @@ void expect_input_error(F&& f, const std::string& text) {
   }
 }
 
+// Forced orbits on the reduced basis (modes > 0) of a bar that strikes its
+// wall: with every fixed-interface mode the reduced model is the full one
+// (the same orbit to round-off, a zero reduction residual); with fewer, the
+// orbit approaches the full model's as modes are added, and the reported
+// reduction residual (the full model's equations, damping and excitation
+// included, along the reduced orbit) falls with the error. Variants: the
+// massless boundary, the paper's NBM, a moving wall, an assembled damping
+// matrix.
+TEST(UserForcedOrbit, ReducedBasisOrbitsConvergeToTheFullModels) {
+  for (int variant = 0; variant < 4; ++variant) {
+    nbm_test::GapBar bar;
+    bar.N = 40, bar.g = 0.02, bar.massless = variant != 1;
+    const auto problem = bar.problem();
+    const int n = bar.N + 1;
+    std::vector<double> zero(n, 0.0), Fc(n, 0.0);
+    for (int i = 1; i < bar.N; ++i) Fc[i] = 0.02 * std::sin(0.5 * M_PI * i * bar.h());
+    nbm::ForcedOrbitOptions o;
+    o.omega = 1.45;  // below the first mode, pi / 2: the tip strikes the wall
+    o.rayleigh_mass = 0.05, o.rayleigh_stiffness = 1e-3;
+    o.probe = bar.N - 1;
+    o.transient_periods = 20;
+    if (variant == 2) o.gap_cos = {{0.005}};  // the wall moves
+    if (variant == 3) {
+      // An assembled damping matrix on the first half of the bar.
+      o.damping.rows = o.damping.cols = n;
+      for (long i = 1; i < bar.N / 2; ++i)
+        o.damping.i.push_back(i), o.damping.j.push_back(i), o.damping.value.push_back(0.02 * bar.h());
+    }
+    const nbm::OrbitReport full = nbm::forced_orbit(*problem, zero, {Fc}, {}, zero, zero, o);
+    ASSERT_GE(full.switches, 2) << variant << ": the tip should strike the wall";
+    const Vector u_full = Eigen::Map<const Vector>(full.u0.data(), n);
+    std::vector<double> errors, residuals;
+    for (int modes : {2, 4, 8, 39}) {
+      nbm::ForcedOrbitOptions r = o;
+      r.modes = modes;
+      const nbm::OrbitReport red = nbm::forced_orbit(*problem, zero, {Fc}, {}, full.u0, full.v0, r);
+      const Vector u = Eigen::Map<const Vector>(red.u0.data(), n);
+      errors.push_back((u - u_full).norm() / u_full.norm());
+      residuals.push_back(red.reduction_residual);
+      std::printf("forced bar, variant %d, %2d modes: state error %.2e, reduction residual %.2e, "
+                  "switches %ld (full %ld)\n", variant, modes, errors.back(), residuals.back(),
+                  red.switches, full.switches);
+      EXPECT_LE(red.periodicity_residual, 1e-9) << variant << " " << modes;
+      EXPECT_NE(red.summary.find("reduced basis: " + std::to_string(modes)), std::string::npos);
+    }
+    EXPECT_LT(errors[3], 1e-8) << variant;      // every mode: the full model
+    EXPECT_LT(residuals[3], 1e-10) << variant;  // and no reduction error
+    for (int k = 1; k < 3; ++k) {
+      EXPECT_LT(errors[k], errors[k - 1]) << variant << " " << k;
+      EXPECT_LT(residuals[k], residuals[k - 1]) << variant << " " << k;
+    }
+    EXPECT_GT(residuals[0], 1e-6) << variant;  // the residual sees a real reduction error
+  }
+}
+
 TEST(UserForcedOrbit, BadInputIsNamed) {
   ForcedBar b;
   auto with = [&](auto change, const std::string& text) {
@@ -296,6 +351,8 @@ TEST(UserForcedOrbit, BadInputIsNamed) {
   with([](ForcedBar& c) { c.o.probe = 99; }, "probe: dof 99 out of range");
   with([](ForcedBar& c) { c.o.transient_periods = -1; }, "transient: expected");
   with([](ForcedBar& c) { c.o.max_iterations = 0; }, "iterations: expected >= 1");
+  with([](ForcedBar& c) { c.o.modes = -1; }, "modes: -1; expected >= 0");
+  with([](ForcedBar& c) { c.o.modes = 12; }, "modes: 12; expected 1 .. 11");
   with([](ForcedBar& c) { c.o.gap_cos = {{0.1, 0.2}}; },
        "gapCos (harmonic 1): size 2, expected 1 (one value per contact node)");
   with([](ForcedBar& c) { c.o.gap_sin = {{0}, {NAN}}; },

@@ -98,13 +98,14 @@ Vector FlowForcing::at(const Region& r, double t) const {
   return f;
 }
 
-ContactShift FlowForcing::shift(double t, bool rate) const {
+ContactShift FlowForcing::shift(double t, int derivative) const {
   ContactShift s;
   if (!moves_contacts()) return s;
   s.gap = Vector::Zero(gap.front().size());
   s.load = Vector::Zero(contact_load.front().size());
   for (std::size_t k = 0; k < Omega.size(); ++k) {
-    const Complex phase = std::exp(Complex(0, Omega[k] * t)) * (rate ? Complex(0, Omega[k]) : 1.0);
+    Complex phase = std::exp(Complex(0, Omega[k] * t));
+    for (int d = 0; d < derivative; ++d) phase *= Complex(0, Omega[k]);
     s.gap += (gap[k] * phase).real();
     s.load += (contact_load[k] * phase).real();
   }
@@ -428,7 +429,7 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     if (!crossing) break;
 
     const ActiveSet next = field_.switched(region, out.u, out.v, crossing->row,
-                                           forcing_.shift(t0 + t), forcing_.shift(t0 + t, true));
+                                           forcing_.shift(t0 + t), forcing_.shift(t0 + t, 1));
     if (sensitivity) {
       // Saltation (Leine & Nijmeijer): S = I + (f+ - f-) n^T / (n^T f- + h_t)
       // with n = (H_j, 0), f = (v, a), h_t = d_j'(t) of moving contacts; only

@@ -44,9 +44,10 @@ struct FlowForcing {
   Eigen::VectorXcd region_switching(const Region& region, std::size_t k) const;
   /// The harmonic part of the interior load on a region at time t.
   Vector at(const Region& region, double t) const;
-  /// The shift of the gaps and contact loads at time t (with `rate`, its
-  /// time derivative); empty if the contacts do not move.
-  ContactShift shift(double t, bool rate = false) const;
+  /// The shift of the gaps and contact loads at time t, or its time
+  /// derivative of the given order (1: the rate); empty if the contacts do
+  /// not move.
+  ContactShift shift(double t, int derivative = 0) const;
 };
 
 /// The flow on one region in closed form: the state at local time t, the

@@ -27,7 +27,8 @@ struct OrbitModel {
   const ContactProblem& problem;
   Vector F;  ///< the (constant) load, internal coordinates
   std::unique_ptr<ReducedField> full;
-  std::unique_ptr<ReducedBasis> basis;
+  /// Shared by the models of a response curve's points.
+  std::shared_ptr<const ReducedBasis> basis;
   int modes = 0;  ///< of the reduced basis; 0: none
   std::vector<Index> interior;  ///< internal indices of the interior dofs
   /// How the orbit was computed (continuation keeps it): shooting or not,
@@ -35,11 +36,21 @@ struct OrbitModel {
   bool shooting = true;
   ShootingOptions conditions;
   /// A forced orbit's flow (damping and harmonic load, method.md §9) on
-  /// field(); null for an autonomous orbit.
+  /// field(); null for an autonomous orbit. It follows the excitation below
+  /// in field()'s coordinates (forced_flow).
   std::unique_ptr<ExactFlow> forced;
+  /// A forced orbit's damping and harmonic excitation on the full model
+  /// (internal coordinates): what the reduction residual is measured with.
+  Damping damping;
+  HarmonicLoad excitation;
 
   explicit OrbitModel(const ContactProblem& p);
   const ReducedField& field() const { return basis ? basis->field() : *full; }
+  /// The flow of a damping and an excitation of the full model (internal
+  /// coordinates) on field(): reduced to its coordinates with a basis.
+  ExactFlow forced_flow(const Damping& damping, const HarmonicLoad& excitation) const;
+  /// Makes the forced flow of that damping and excitation the model's.
+  void force(const Damping& damping, const HarmonicLoad& excitation);
   /// The flow the orbit follows: the forced one, or the field's own.
   ExactFlow flow() const { return forced ? *forced : ExactFlow(field()); }
   /// Field unknowns of a user displacement (or velocity).

@@ -70,8 +70,8 @@ void analyse_orbit(const ExactFlow& flow, PeriodicOrbit& orbit, bool autonomous)
   // Moving contacts (method.md §8) shift the relation's offset e(t).
   const FlowForcing& forcing = flow.forcing();
   orbit.energy_start =
-      field.energies(orbit.u0, orbit.v0, forcing.shift(0), forcing.shift(0, true));
-  orbit.energy_end = field.energies(r.u, r.v, forcing.shift(T), forcing.shift(T, true));
+      field.energies(orbit.u0, orbit.v0, forcing.shift(0), forcing.shift(0, 1));
+  orbit.energy_end = field.energies(r.u, r.v, forcing.shift(T), forcing.shift(T, 1));
   orbit.switches = r.switches;
 
   // Time with a closed contact: sum over the intervals between switches.

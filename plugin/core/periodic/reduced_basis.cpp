@@ -88,32 +88,81 @@ Vector ReducedBasis::reduce(const Vector& u_interior) const {
   return VtM_ * u_interior;
 }
 
+Vector ReducedBasis::reduce_load(const Vector& F) const {
+  Vector y(V_.cols() + static_cast<Index>(contact_.size()));
+  y << V_.transpose() * F(interior_), F(contact_);
+  return y;
+}
+
+Damping ReducedBasis::reduce(const Damping& d) const {
+  Damping r = d;
+  if (!d.has_matrix()) return r;
+  // T^T C T: C vanishes on the contact normal components (checked where it
+  // comes in), so only the interior block is projected.
+  const Index m = V_.cols(), nc = static_cast<Index>(contact_.size());
+  Matrix C = Matrix::Zero(m + nc, m + nc);
+  const Matrix dense(d.C_user);
+  C.topLeftCorner(m, m) = V_.transpose() * dense(interior_, interior_) * V_;
+  C.topRightCorner(m, nc) = V_.transpose() * dense(interior_, contact_);
+  C.bottomLeftCorner(nc, m) = dense(contact_, interior_) * V_;
+  C.bottomRightCorner(nc, nc) = dense(contact_, contact_);
+  r.C_user = C.sparseView();
+  return r;
+}
+
+HarmonicLoad ReducedBasis::reduce(const HarmonicLoad& load) const {
+  HarmonicLoad r = load;
+  for (Vector& F : r.cos) F = reduce_load(F);
+  for (Vector& F : r.sin) F = reduce_load(F);
+  return r;
+}
+
 double ReducedBasis::full_residual(const Vector& q, const Vector& a) const {
-  // Full internal state x = (V q, u_C) and its acceleration, u_C from the
-  // reduced model's nodal boundary relation (the full model's on range(V)).
+  return full_residual(q, Vector::Zero(q.size()), a, 0, ExactFlow(*field_), Damping{},
+                       HarmonicLoad{});
+}
+
+double ReducedBasis::full_residual(const Vector& q, const Vector& v, const Vector& a, double t,
+                                   const ExactFlow& flow, const Damping& damping,
+                                   const HarmonicLoad& load) const {
+  // Full internal state x = (V q, u_C), its rate and acceleration, u_C from
+  // the reduced model's nodal boundary relation (the full model's on
+  // range(V)) with the contacts moved to time t (method.md §8).
   const ReducedField& f = *field_;
-  const auto reg_held = f.region(f.active_set(q));
+  const FlowForcing& forcing = flow.forcing();
+  const auto reg_held = f.region(f.active_set(q, forcing.shift(t)));
   const Region& reg = *reg_held;
   const Index N = problem_.size();
-  Vector x(N), xa(N);
+  Vector x(N), xv(N), xa(N);
   x(interior_) = V_ * q;
+  xv(interior_) = V_ * v;
   xa(interior_) = V_ * a;
-  x(contact_) = reg.A * q + reg.e;
-  xa(contact_) = reg.A * a;
-  const Vector r = problem_.M() * xa + problem_.K() * x - F_;
+  x(contact_) = reg.A * q + reg.e + offset_shift(reg, forcing.shift(t));
+  xv(contact_) = reg.A * v + offset_shift(reg, forcing.shift(t, 1));
+  xa(contact_) = reg.A * a + offset_shift(reg, forcing.shift(t, 2));
+  // The load at t: F0 and the harmonics of the excitation.
+  Vector F = F_;
+  for (std::size_t k = 0; k < load.cos.size(); ++k) F += std::cos((k + 1) * load.omega * t) * load.cos[k];
+  for (std::size_t k = 0; k < load.sin.size(); ++k) F += std::sin((k + 1) * load.omega * t) * load.sin[k];
+  const SparseMatrix C = damping_matrix(damping, problem_.M(), problem_.K());
+  Vector r = problem_.M() * xa + problem_.K() * x - F;
+  Vector terms = problem_.M().cwiseAbs() * xa.cwiseAbs() + problem_.K().cwiseAbs() * x.cwiseAbs() +
+                 F.cwiseAbs();
+  if (C.size() != 0) {
+    r += C * xv;
+    terms += C.cwiseAbs() * xv.cwiseAbs();
+  }
   // P^T r of the full model: r_O + A_full^T r_C, with A_full from the full
   // nodal boundary relation (open contacts: u_I = K_II^-1 (F_I - K_IO u_O ...)).
   Vector R = r(interior_);
-  std::vector<Index> open, open_dofs;
+  std::vector<Index> open_dofs;
   for (Index k = 0; k < f.n_contact(); ++k)
-    if (!reg.active[k]) open.push_back(k), open_dofs.push_back(contact_[k]);
-  if (!open.empty()) {
+    if (!reg.active[k]) open_dofs.push_back(contact_[k]);
+  if (!open_dofs.empty()) {
     const Matrix KII = Matrix(block(problem_.K(), open_dofs, open_dofs));
     const Vector y = KII.llt().solve(r(open_dofs));
     R -= block(problem_.K(), interior_, open_dofs) * y;
   }
-  const Vector terms = (problem_.M().cwiseAbs() * xa.cwiseAbs() +
-                        problem_.K().cwiseAbs() * x.cwiseAbs() + F_.cwiseAbs());
   return R.norm() / std::max(terms(interior_).norm(), 1e-300);
 }
 

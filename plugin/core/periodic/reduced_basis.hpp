@@ -10,6 +10,9 @@
 #pragma once
 
 #include "contact/contact_problem.hpp"
+#include "contact/damping.hpp"
+#include "periodic/exact_flow.hpp"
+#include "periodic/harmonic_load.hpp"
 #include "periodic/reduced_field.hpp"
 
 namespace nbm {
@@ -32,11 +35,25 @@ class ReducedBasis {
   /// u_O = V q.
   Vector expand(const Vector& q) const { return V_ * q; }
 
+  /// The reduced problem's coordinates (q, u_C) are T^T x of the full
+  /// model's internal ones, T = [V 0; 0 I]: a load F becomes T^T F, a
+  /// damping matrix T^T C T, the harmonics of a forced orbit likewise (the
+  /// gap harmonics, per contact, stay); Rayleigh coefficients carry over.
+  Vector reduce_load(const Vector& F) const;
+  Damping reduce(const Damping& damping) const;
+  HarmonicLoad reduce(const HarmonicLoad& load) const;
+
   /// Residual of the full model's reduced equations P^T (M x'' + K x - F)
   /// (method.md §4) at the reduced state (q, q''), relative to the size of
   /// its terms: zero for an exact solution of the full model, so the
   /// reduction error of a state on an orbit of the reduced model.
   double full_residual(const Vector& q, const Vector& a) const;
+  /// The same for a forced orbit, P^T (M x'' + C x' + K x - F(t)) at the
+  /// reduced state (q, q', q'') at time t of `flow` (a flow of field(), the
+  /// reduction of `damping` and `load`, which are the full model's).
+  double full_residual(const Vector& q, const Vector& v, const Vector& a, double t,
+                       const ExactFlow& flow, const Damping& damping,
+                       const HarmonicLoad& load) const;
 
  private:
   const ContactProblem& problem_;

@@ -97,6 +97,8 @@ void check_options(const ForcedOrbitOptions& o) {
     throw InputError("transient: expected a number of periods >= 0, got " +
                      std::to_string(o.transient_periods));
   if (o.max_iterations < 1) throw InputError("iterations: expected >= 1");
+  if (o.modes < 0)
+    throw InputError("modes: " + std::to_string(o.modes) + "; expected >= 0 (0: no reduced basis)");
   if (o.method != "shooting" && o.method != "harmonic-balance")
     throw InputError("method: \"" + o.method + "\"; expected \"shooting\" or \"harmonic-balance\"");
   if (o.method == "harmonic-balance" && (o.harmonics < o.subharmonic || o.harmonics > 320))
@@ -105,12 +107,14 @@ void check_options(const ForcedOrbitOptions& o) {
                      ", the subharmonic: the load's first harmonic is the series' m-th)");
 }
 
-// The model of a forced orbit: the field of the user's F0, the damping and
-// the harmonic load, all checked (named errors).
+// The model of a forced orbit: the field of the user's F0 (on a reduced
+// basis with modes > 0), the damping and the harmonic load, all checked
+// (named errors): on the full model's internal coordinates, and on the
+// field's (the flows' and the continuation's).
 struct ForcedSetup {
   std::shared_ptr<OrbitModel> model;
-  Damping damping;
-  HarmonicLoad load;
+  Damping damping, field_damping;
+  HarmonicLoad load, field_load;
 };
 
 ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
@@ -130,18 +134,25 @@ ForcedSetup setup(const ContactProblem& problem, const std::vector<double>& F0,
                      "excitation the damped model's only periodic orbit is its equilibrium)");
   check_amplitude_probe(problem, o.probe);
   const Index interior = problem.size() - problem.n_contact();
-  if (interior > periodic_max_dense_dofs)
+  if (o.modes == 0 && interior > periodic_max_dense_dofs)
     throw InputError("the model has " + std::to_string(interior) +
-                     " interior dofs; forced orbits accept at most " +
+                     " interior dofs; without a reduced basis forced orbits accept at most " +
                      std::to_string(periodic_max_dense_dofs) +
-                     " (no reduced basis for them yet: use a coarser mesh)");
+                     " (use modes = m for a reduced basis, or a coarser mesh)");
   f.model = std::make_shared<OrbitModel>(problem);
   f.model->F = problem.to_internal(FF);
-  f.model->full = std::make_unique<ReducedField>(ReducedField::from(problem, f.model->F));
+  f.model->modes = o.modes;
+  if (o.modes > 0)
+    f.model->basis = std::make_shared<const ReducedBasis>(problem, f.model->F, o.modes);
+  else
+    f.model->full = std::make_unique<ReducedField>(ReducedField::from(problem, f.model->F));
   f.model->shooting = true;
   f.damping.a_M = o.rayleigh_mass, f.damping.b_K = o.rayleigh_stiffness;
   if (!o.damping.value.empty() || o.damping.rows != 0)
     f.damping.C_user = internal_damping(problem, o.damping);
+  const auto& basis = f.model->basis;
+  f.field_damping = basis ? basis->reduce(f.damping) : f.damping;
+  f.field_load = basis ? basis->reduce(f.load) : f.load;
   return f;
 }
 
@@ -170,10 +181,11 @@ std::shared_ptr<OrbitModel> model_at(const ForcedSetup& f, const ForcedContinuat
                                      double p) {
   auto m = std::make_shared<OrbitModel>(f.model->problem);
   m->F = f.model->F;
-  m->full = std::make_unique<ReducedField>(f.model->field());
+  m->modes = f.model->modes;
+  m->basis = f.model->basis;
+  if (!m->basis) m->full = std::make_unique<ReducedField>(f.model->field());
   m->shooting = true;
-  m->forced =
-      std::make_unique<ExactFlow>(m->field(), f.damping, forced_load(f.load, c.parameter, p));
+  m->force(f.damping, forced_load(f.load, c.parameter, p));
   return m;
 }
 
@@ -191,10 +203,10 @@ ForcedResponse describe_curve(const ForcedSetup& f, const ForcedCurve& curve,
     out.stop_reason += " (amplitude scales relative to the factor " + number(factor) +
                        " where the branch starts)";
   const OrbitModel& model = *f.model;
-  const ExactFlow base(model.field(), f.damping, f.load);
+  const ExactFlow base(model.field(), f.field_damping, f.field_load);
   for (std::size_t k = 0; k < curve.points.size(); ++k) {
     const ForcedPoint& p = curve.points[k];
-    const ExactFlow flow = base.with_load(forced_load(f.load, c.parameter, p.parameter));
+    const ExactFlow flow = base.with_load(forced_load(f.field_load, c.parameter, p.parameter));
     const OrbitSamples s = sample_orbit(model, flow, p.orbit);
     if (k == 0) out.probe = amplitude_probe(model.problem, s, out.probe);
     ForcedResponsePoint row;
@@ -266,7 +278,7 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
                      std::to_string(curve.events.size()) + " events; " + curve.stop_reason +
                      "): nothing to switch at");
   const PeriodDoubledOrbit doubled =
-      switch_at_period_doubling(f.model->field(), f.damping, f.load, c, curve, *event,
+      switch_at_period_doubling(f.model->field(), f.field_damping, f.field_load, c, curve, *event,
                                 r.doubling_amplitude);
   if (doubled.parameter < c.parameter_min || doubled.parameter > c.parameter_max)
     throw NumericalError("doubling: the period-" + std::to_string(2 * c.subharmonic) +
@@ -282,8 +294,9 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
   // amplitude, factor 1 of the continuation is the user's factor p).
   ForcedSetup g;
   g.model = f.model;
-  g.damping = f.damping;
+  g.damping = f.damping, g.field_damping = f.field_damping;
   g.load = forced_load(f.load, c.parameter, doubled.parameter);
+  g.field_load = forced_load(f.field_load, c.parameter, doubled.parameter);
   ForcedContinuationOptions c2 = c;
   c2.subharmonic = 2 * c.subharmonic;
   c2.shooting.transient_periods = 0;
@@ -292,7 +305,7 @@ std::shared_ptr<const ForcedDoubling> switch_branch(const ForcedSetup& f,
   const bool amplitude = c.parameter == ForcedParameter::amplitude;
   const double factor = amplitude ? doubled.parameter : 1.0;
   if (amplitude) c2.parameter_min /= factor, c2.parameter_max /= factor;
-  const ForcedCurve branch = continue_forced(g.model->field(), g.damping, g.load,
+  const ForcedCurve branch = continue_forced(g.model->field(), g.field_damping, g.field_load,
                                              doubled.orbit.u0, doubled.orbit.v0, c2);
   ForcedOrbitOptions o2 = o;
   o2.omega = g.load.omega;
@@ -319,7 +332,7 @@ OrbitReport forced_orbit(const ContactProblem& problem, const std::vector<double
   ForcedSetup f = setup(problem, F0, load_cos, load_sin, o);
   const Index N = problem.n_dofs();
   const Vector uu = user_vector(u, N, "u"), vv = user_vector(v, N, "v");
-  f.model->forced = std::make_unique<ExactFlow>(f.model->field(), f.damping, f.load);
+  f.model->force(f.damping, f.load);
   const Vector u0 = f.model->unknowns(uu), v0 = f.model->unknowns(vv);
   const PeriodicProblem forced(*f.model->forced, o.subharmonic);
   if (o.method == "harmonic-balance") {
@@ -392,7 +405,7 @@ ForcedResponse forced_response(const ContactProblem& problem, const std::vector<
   if (r.doubling && !(r.doubling_amplitude > 0 && std::isfinite(r.doubling_amplitude)))
     throw InputError("doublingAmplitude: expected a finite amplitude > 0 (scaled unknowns), got " +
                      number(r.doubling_amplitude));
-  const ForcedCurve curve = continue_forced(f.model->field(), f.damping, f.load,
+  const ForcedCurve curve = continue_forced(f.model->field(), f.field_damping, f.field_load,
                                             f.model->unknowns(uu), f.model->unknowns(vv), c);
   ForcedResponse out = describe_curve(f, curve, c, o, o.probe, r.parameter, 1.0);
   if (r.doubling) out.doubling = switch_branch(f, curve, c, o, out.probe, r);

@@ -11,10 +11,12 @@
 // (g0 the problem's gaps, method.md §8), on a damped model C = a_M M + b_K K
 // + C_user (M the problem's mass: redistributed with the massless boundary;
 // C_user an assembled matrix that vanishes on the contact dofs). The orbit
-// has the period 2 pi m / omega and
-// no phase condition (the excitation fixes the time origin). Full interior
-// only: no reduced basis (its reduction residual would have to carry the
-// damping and the harmonic load).
+// has the period 2 pi m / omega and no phase condition (the excitation fixes
+// the time origin). On the full interior, or with modes > 0 on the reduced
+// basis of autonomous orbits (reduced_basis.hpp: damping, load and its
+// harmonics projected; the contact dofs and the gap harmonics as they are),
+// whose reduction error the report gives: the full model's residual, damping
+// and excitation included, along the orbit.
 #pragma once
 
 #include <limits>
@@ -42,6 +44,9 @@ struct ForcedOrbitOptions {
   /// orbit's basin; shooting.hpp).
   int transient_periods = 0;
   int max_iterations = periodic_max_iterations;
+  /// Reduced basis: this many fixed-interface modes plus the static contact
+  /// shapes; 0: the full interior (at most 3000 dofs).
+  int modes = 0;
   /// "shooting" (shooting.hpp) or "harmonic-balance"
   /// (harmonic_balance.hpp: `harmonics` harmonics of omega / m, the
   /// guess's flow its initial series; the report then has the coefficients,

@@ -72,7 +72,7 @@ OrbitSamples sample_orbit(const OrbitModel& model, const ExactFlow& flow,
     const Vector user = model.user(uk, nullptr, t, &flow);
     s.lo = s.lo.cwiseMin(user), s.hi = s.hi.cwiseMax(user);
     s.energy_max = std::max(s.energy_max, field.energies(uk, vk, flow.forcing().shift(t),
-                                                         flow.forcing().shift(t, true))(3));
+                                                         flow.forcing().shift(t, 1))(3));
   }
   return s;
 }
@@ -102,6 +102,15 @@ OrbitModel::OrbitModel(const ContactProblem& p) : problem(p) {
     if (!is_contact[i]) interior.push_back(i);
 }
 
+ExactFlow OrbitModel::forced_flow(const Damping& d, const HarmonicLoad& e) const {
+  return basis ? ExactFlow(field(), basis->reduce(d), basis->reduce(e)) : ExactFlow(field(), d, e);
+}
+
+void OrbitModel::force(const Damping& d, const HarmonicLoad& e) {
+  damping = d, excitation = e;
+  forced = std::make_unique<ExactFlow>(forced_flow(d, e));
+}
+
 Vector OrbitModel::unknowns(const Vector& user) const {
   const Vector x = problem.to_internal(user);
   return basis ? basis->reduce(x(interior)) : full->restrict(x);
@@ -118,7 +127,7 @@ Vector OrbitModel::user(const Vector& u, const Vector* v, double t,
   const ReducedField& f = field();
   if (!flow) flow = forced.get();
   const ContactShift shift = flow ? flow->forcing().shift(t) : ContactShift{};
-  const ContactShift rate = flow ? flow->forcing().shift(t, true) : ContactShift{};
+  const ContactShift rate = flow ? flow->forcing().shift(t, 1) : ContactShift{};
   const Vector y = v ? f.expand_velocity(u, *v, shift, rate) : f.expand(u, shift);
   if (!basis) return problem.to_user(y);
   const Index r = basis->size();
@@ -161,7 +170,7 @@ OrbitReport periodic_orbit(const ContactProblem& problem, const std::vector<doub
   model->F = problem.to_internal(FF);
   model->modes = o.modes;
   if (o.modes > 0)
-    model->basis = std::make_unique<ReducedBasis>(problem, model->F, o.modes);
+    model->basis = std::make_shared<const ReducedBasis>(problem, model->F, o.modes);
   else
     model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
   const ReducedField& field = model->field();
@@ -241,15 +250,21 @@ OrbitReport describe(std::shared_ptr<const OrbitModel> model, const PeriodicOrbi
   report.u0 = to_std(model->user(orbit.u0));
   report.v0 = to_std(model->user(orbit.u0, &orbit.v0));
   if (model->basis) {
-    // Reduction error: the full model's residual along the orbit.
+    // Reduction error: the full model's residual along the orbit (with a
+    // forced orbit's damping and excitation).
     std::vector<double> times(64);
     for (int k = 0; k < 64; ++k) times[k] = orbit.period * k / 64;
-    const FlowResult r = ExactFlow(field).integrate(orbit.u0, orbit.v0, orbit.period, false, times);
+    const ExactFlow flow = model->flow();
+    const FlowResult r = flow.integrate(orbit.u0, orbit.v0, orbit.period, false, times);
     const Index n = field.size();
     for (Index k = 0; k < r.samples.cols(); ++k) {
-      const Vector q = r.samples.col(k).head(n);
-      report.reduction_residual = std::max(report.reduction_residual,
-                                           model->basis->full_residual(q, field.acceleration(q)));
+      const Vector q = r.samples.col(k).head(n), v = r.samples.col(k).tail(n);
+      const double t = times[static_cast<std::size_t>(k)];
+      const auto region = field.region(field.active_set(q, flow.forcing().shift(t)));
+      const Vector a = flow.acceleration(*region, q, v, t);
+      report.reduction_residual =
+          std::max(report.reduction_residual,
+                   model->basis->full_residual(q, v, a, t, flow, model->damping, model->excitation));
     }
     report.cutoff_ratio = model->basis->cutoff_frequency() * orbit.period / (2 * M_PI);
     extra << "reduced basis: " << model->modes << " fixed-interface modes + " << problem.n_contact()
