@@ -7,7 +7,8 @@
 //                       iterations = 50,   // Newton iterations per orbit
 //                       probe = i,         // the dof of probe_amplitude (default: the
 //                                          // dof of largest amplitude at grazing)
-//                       table = P);        // real[int,int] n x 12, the CSV's numbers
+//                       table = P,         // real[int,int] n x 12, the CSV's numbers
+//                       modes = 0);        // > 0: on a reduced basis (as nbmPeriodicOrbit)
 //
 // The backbone of linear mode `mode` (0: the lowest of the system with every
 // contact open) under the constant load F: its grazing orbit, then up to
@@ -34,7 +35,7 @@ namespace {
 
 class Backbone : public E_F0mps {
  public:
-  static const int n_name_param = 5;
+  static const int n_name_param = 6;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, F, mode, points, step, file;
@@ -56,6 +57,7 @@ class Backbone : public E_F0mps {
     if (nargs[2]) o.max_iterations = static_cast<int>(GetAny<long>((*nargs[2])(s)));
     KNM<double>* table = nargs[3] ? GetAny<KNM<double>*>((*nargs[3])(s)) : nullptr;
     if (nargs[4]) o.probe = GetAny<long>((*nargs[4])(s));
+    if (nargs[5]) o.modes = static_cast<int>(GetAny<long>((*nargs[5])(s)));
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
     const long j = GetAny<long>((*mode)(s));
     const string* name = GetAny<string*>((*file)(s));
@@ -100,6 +102,7 @@ basicAC_F0::name_and_type Backbone::name_param[] = {
     {"iterations", &typeid(long)},
     {"table", &typeid(KNM<double>*)},
     {"probe", &typeid(long)},
+    {"modes", &typeid(long)},
 };
 
 class BackboneOp : public OneOperator {

@@ -4,7 +4,9 @@
 // against its closed-form period, and input errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <string>
 
@@ -15,6 +17,7 @@
 #include "oscillators.hpp"  // name_word
 #include "periodic/backbone.hpp"
 #include "periodic/user_backbone.hpp"
+#include "periodic/user_orbit.hpp"
 
 namespace {
 
@@ -387,9 +390,55 @@ TEST(UserBackbone, ReportsEveryPointOnTheBar) {
   const nbm::BackboneReport s = nbm::backbone(*problem, F, 0, o);
   EXPECT_EQ(s.points.size(), 4u);
   EXPECT_NE(s.stop_reason.find("energy"), std::string::npos);
-  // The load's size is checked.
+  // The load's size is checked, and the reduced basis's size.
+  o.modes = -1;
+  expect_input_error([&] { nbm::backbone(*problem, F, 0, o); }, "modes: -1; expected >= 0");
+  o.modes = 10;
+  expect_input_error([&] { nbm::backbone(*problem, F, 0, o); }, "modes: 10; expected 1 .. 9");
+  o.modes = 0;
   F.pop_back();
   expect_input_error([&] { nbm::backbone(*problem, F, 0, o); }, "F: size 10, expected 11");
+}
+
+// The backbone on the reduced basis, checked on the full model: each
+// reduced orbit, expanded to the user's dofs, is the guess of the full
+// model's orbit of the same energy (shooting, condition "energy"). With every
+// fixed-interface mode the reduced orbits are the full model's (states to
+// 1e-9, reduction residuals at round-off); with 6 of 15 they lie within a
+// few percent of them, and the reported residual says so. (The two
+// backbones' points differ: the arclength steps are measured in their own
+// unknowns.)
+TEST(UserBackbone, OnTheReducedBasisFollowsTheFullModels) {
+  nbm_test::GapBar bar;
+  bar.N = 16;
+  const auto problem = bar.problem();
+  std::vector<double> F(bar.N + 1, 0.0);
+  nbm::BackboneOptions o;
+  o.points = 5;
+  for (int modes : {15, 6}) {
+    o.modes = modes;
+    const nbm::BackboneReport red = nbm::backbone(*problem, F, 0, o);
+    ASSERT_EQ(red.points.size(), 5u) << modes << ": " << red.stop_reason;
+    EXPECT_NE(red.summary.find("reduced basis: " + std::to_string(modes)), std::string::npos);
+    for (std::size_t k = 0; k < red.points.size(); ++k) {
+      const nbm::OrbitReport r = red.orbits->report(k);
+      nbm::OrbitOptions full;
+      full.condition = "energy";
+      full.amplitude = r.energies[3];
+      full.half_period = true;
+      full.probe = r.probe;
+      const nbm::OrbitReport f = nbm::periodic_orbit(*problem, F, r.u0, r.v0, r.period, full);
+      double d = 0, size = 0;
+      for (std::size_t i = 0; i < f.u0.size(); ++i)
+        d = std::max(d, std::abs(f.u0[i] - r.u0[i])), size = std::max(size, std::abs(f.u0[i]));
+      std::printf("backbone, %2d modes, orbit %zu: period %.10f, energy %.6e; the full model's "
+                  "orbit of that energy differs by %.1e of its size; reduction residual %.1e\n",
+                  modes, k, r.period, red.points[k].energy, d / size, r.reduction_residual);
+      EXPECT_LT(d, (modes == 15 ? 1e-9 : 0.05) * size) << modes << " " << k;
+      EXPECT_LT(r.reduction_residual, modes == 15 ? 1e-12 : 0.05) << modes << " " << k;
+      if (modes == 6) EXPECT_GT(r.reduction_residual, 1e-5) << k;
+    }
+  }
 }
 
 }  // namespace

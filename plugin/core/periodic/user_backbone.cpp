@@ -15,14 +15,22 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
                         const BackboneOptions& options) {
   const Vector FF = user_vector(F, problem.n_dofs(), "F");
   const Index interior = problem.size() - problem.n_contact();
-  if (interior > periodic_max_dense_dofs)
+  if (options.modes < 0)
+    throw InputError("modes: " + std::to_string(options.modes) +
+                     "; expected >= 0 (0: no reduced basis)");
+  if (options.modes == 0 && interior > periodic_max_dense_dofs)
     throw InputError("the model has " + std::to_string(interior) +
-                     " interior dofs; backbones use dense matrices and accept at most " +
-                     std::to_string(periodic_max_dense_dofs) + " (use a coarser mesh)");
+                     " interior dofs; without a reduced basis backbones accept at most " +
+                     std::to_string(periodic_max_dense_dofs) +
+                     " (use modes = m for a reduced basis, or a coarser mesh)");
   check_amplitude_probe(problem, options.probe);
   auto model = std::make_shared<OrbitModel>(problem);
   model->F = problem.to_internal(FF);
-  model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
+  model->modes = options.modes;
+  if (options.modes > 0)
+    model->basis = std::make_shared<const ReducedBasis>(problem, model->F, options.modes);
+  else
+    model->full = std::make_unique<ReducedField>(ReducedField::from(problem, model->F));
   const ReducedField& field = model->field();
   const Backbone b = backbone(field, mode, options);
   const ExactFlow flow(field);
@@ -47,7 +55,12 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
     q.period = p.orbit.period;
     q.omega = 2 * M_PI / q.period;
     q.energy = p.energy;
-    q.amplitude = p.amplitude;
+    // On a reduced basis the unknowns are modal coordinates: the amplitude
+    // is read on the interior dofs they expand to.
+    q.amplitude = model->basis ? (model->basis->expand(p.orbit.u0 - b.grazing.static_state))
+                                     .cwiseAbs()
+                                     .maxCoeff()
+                               : p.amplitude;
     q.contact_time = p.orbit.contact_time;
     q.switches = static_cast<long>(p.orbit.switches.size());
     for (const auto& mu : p.orbit.multipliers) {
@@ -64,8 +77,12 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   s.precision(12);
   const BackbonePointReport &first = r.points.front(), &last = r.points.back();
   s << "backbone of mode " << mode << " from grazing (" << (options.half_period ? "half" : "full")
-    << "-period shooting, exact flow, pseudo-arclength step " << options.step << ")\n"
-    << "linear: omega " << r.linear_omega << ", period " << first.period << "\n"
+    << "-period shooting, exact flow, pseudo-arclength step " << options.step << ")\n";
+  if (options.modes > 0)
+    s << "reduced basis: " << options.modes << " fixed-interface modes + " << problem.n_contact()
+      << " contact shapes (" << field.size() << " unknowns); each orbit's report gives the full "
+      << "model's residual along it\n";
+  s << "linear: omega " << r.linear_omega << ", period " << first.period << "\n"
     << "grazing: contact " << r.grazing_contact << " (position in the contact list), modal "
     << "amplitude " << r.grazing_amplitude << ", amplitude " << first.amplitude << ", energy "
     << first.energy << "\n"

@@ -34,6 +34,11 @@ struct BackboneOptions {
   /// that is not fixed; -1: the dof of largest amplitude along the grazing
   /// orbit, kept along the backbone.
   long probe = -1;
+  /// Reduced basis (reduced_basis.hpp, as for periodic_orbit): this many
+  /// fixed-interface modes plus the static contact shapes; 0: the full
+  /// interior (at most 3000 dofs). The orbits' reports (BackboneReport::
+  /// orbits) give the full model's residual along each.
+  int modes = 0;
 };
 
 /// One orbit of a backbone and its monitors.
