@@ -28,13 +28,8 @@ Matrix projected_load(const FlowForcing& forcing, double nu, const TrigBasis& te
 
 void check(const PeriodicProblem& problem, const Vector& u0, const Vector& v0, double T,
            const HarmonicBalanceOptions& o, const std::string& name) {
+  problem.check_guess(u0, v0, T, name);
   const Index n = problem.field().size();
-  if (u0.size() != n || v0.size() != n)
-    throw InputError(name + ": initial state of size " + std::to_string(u0.size()) + " and " +
-                     std::to_string(v0.size()) + ", expected " + std::to_string(n) +
-                     " interior dofs");
-  if (!u0.allFinite() || !v0.allFinite()) throw InputError(name + ": non-finite initial state");
-  problem.check_period(T, name);
   if (o.harmonics < 1 || o.harmonics > o.max_harmonics)
     throw InputError(name + ": harmonics must be in [1, max_harmonics]");
   if (o.integration == HarmonicBalanceOptions::Integration::aft && o.aft_samples < 0)

@@ -25,7 +25,14 @@ PeriodicProblem::PeriodicProblem(const ReducedField& field)
 PeriodicProblem::PeriodicProblem(const ExactFlow& flow, int subharmonic)
     : flow_(&flow), subharmonic_(subharmonic), period_(forced_period(flow, subharmonic)) {}
 
-void PeriodicProblem::check_period(double T, const std::string& solver) const {
+void PeriodicProblem::check_guess(const Vector& u0, const Vector& v0, double T,
+                                  const std::string& solver) const {
+  const Index n = field().size();
+  if (u0.size() != n || v0.size() != n)
+    throw InputError(solver + ": initial state of size " + std::to_string(u0.size()) + " and " +
+                     std::to_string(v0.size()) + ", expected " + std::to_string(n) +
+                     " interior dofs");
+  if (!u0.allFinite() || !v0.allFinite()) throw InputError(solver + ": non-finite initial state");
   if (!forced()) {
     if (!(T > 0) || !std::isfinite(T))
       throw InputError(solver + ": the period guess must be > 0");

@@ -42,10 +42,11 @@ class PeriodicProblem {
   int subharmonic() const { return subharmonic_; }
   /// The fixed period of a forced problem (2 pi m / omega); NaN if autonomous.
   double period() const { return period_; }
-  /// Checks the period guess T of a solver (named in the message): finite
-  /// and > 0 for an autonomous problem, the fixed period (to 1e-12 relative)
-  /// for a forced one. Throws InputError.
-  void check_period(double T, const std::string& solver) const;
+  /// Checks a solver's guess (the solver named in the message): u0, v0 of
+  /// the field's size and finite; the period T finite and > 0 for an
+  /// autonomous problem, the fixed period (to 1e-12 relative) for a forced
+  /// one. Throws InputError.
+  void check_guess(const Vector& u0, const Vector& v0, double T, const std::string& solver) const;
 
  private:
   std::unique_ptr<const ExactFlow> own_;  ///< the autonomous flow

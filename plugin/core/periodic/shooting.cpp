@@ -32,6 +32,34 @@ double amplitude_value(const ReducedField& field, const ShootingOptions& o, cons
   return amplitude_value(field, o.kind, o.probe, u, v, period);
 }
 
+// The guess and the options, checked (InputError naming them).
+void check(const PeriodicProblem& problem, const Vector& u0, const Vector& v0, double T,
+           const ShootingOptions& o, const std::string& name) {
+  problem.check_guess(u0, v0, T, name);
+  const Index n = problem.field().size();
+  if (!(o.tolerance > 0)) throw InputError(name + ": tolerance must be > 0");
+  if (o.transient_periods < 0)
+    throw InputError(name + ": transient_periods must be >= 0, got " +
+                     std::to_string(o.transient_periods));
+  if (problem.forced()) {
+    if (o.half_period || o.arclength || !std::isnan(o.amplitude))
+      throw InputError(name + ": half_period, amplitude and arclength conditions are an "
+                       "autonomous orbit's (the excitation fixes a forced orbit's period and "
+                       "time origin)");
+  } else {
+    if (o.probe < 0 || o.probe >= n)
+      throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
+                       std::to_string(n) + ")");
+    if (o.arclength) {
+      const auto& a = *o.arclength;
+      if (a.tangent.size() != 2 * n + 1 || a.anchor.size() != 2 * n + 1 ||
+          !a.tangent.allFinite() || !a.anchor.allFinite() || a.tangent.norm() == 0)
+        throw InputError("shooting: the arclength condition needs a non-zero finite tangent and "
+                         "a finite anchor of " + std::to_string(2 * n + 1) + " entries");
+    }
+  }
+}
+
 }  // namespace
 
 double amplitude_value(const ReducedField& field, ShootingOptions::Amplitude kind, Index probe,
@@ -62,34 +90,8 @@ PeriodicOrbit shoot(const PeriodicProblem& problem, const Vector& u0, const Vect
   const ExactFlow& flow = problem.flow();
   const bool forced = problem.forced();
   const std::string name = forced ? "forced orbit" : "shooting";
+  check(problem, u0, v0, T, o, name);
   const Index n = field.size();
-  if (u0.size() != n || v0.size() != n)
-    throw InputError(name + ": initial state of size " + std::to_string(u0.size()) + " and " +
-                     std::to_string(v0.size()) + ", expected " + std::to_string(n) +
-                     " interior dofs");
-  if (!u0.allFinite() || !v0.allFinite()) throw InputError(name + ": non-finite initial state");
-  problem.check_period(T, name);
-  if (!(o.tolerance > 0)) throw InputError(name + ": tolerance must be > 0");
-  if (o.transient_periods < 0)
-    throw InputError(name + ": transient_periods must be >= 0, got " +
-                     std::to_string(o.transient_periods));
-  if (forced) {
-    if (o.half_period || o.arclength || !std::isnan(o.amplitude))
-      throw InputError(name + ": half_period, amplitude and arclength conditions are an "
-                       "autonomous orbit's (the excitation fixes a forced orbit's period and "
-                       "time origin)");
-  } else {
-    if (o.probe < 0 || o.probe >= n)
-      throw InputError("shooting: probe " + std::to_string(o.probe) + " out of range [0, " +
-                       std::to_string(n) + ")");
-    if (o.arclength) {
-      const auto& a = *o.arclength;
-      if (a.tangent.size() != 2 * n + 1 || a.anchor.size() != 2 * n + 1 ||
-          !a.tangent.allFinite() || !a.anchor.allFinite() || a.tangent.norm() == 0)
-        throw InputError("shooting: the arclength condition needs a non-zero finite tangent and "
-                         "a finite anchor of " + std::to_string(2 * n + 1) + " entries");
-    }
-  }
   Vector u_start = u0, v_start = v0;
   if (o.transient_periods > 0) {
     const FlowResult settled = flow.integrate(u0, v0, o.transient_periods * T, false);
