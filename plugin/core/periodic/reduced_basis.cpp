@@ -99,13 +99,14 @@ Damping ReducedBasis::reduce(const Damping& d) const {
   if (!d.has_matrix()) return r;
   // T^T C T: C vanishes on the contact normal components (checked where it
   // comes in), so only the interior block is projected.
+  // Sparse blocks: the full matrix is never made dense.
   const Index m = V_.cols(), nc = static_cast<Index>(contact_.size());
+  const SparseMatrix& U = d.C_user;
   Matrix C = Matrix::Zero(m + nc, m + nc);
-  const Matrix dense(d.C_user);
-  C.topLeftCorner(m, m) = V_.transpose() * dense(interior_, interior_) * V_;
-  C.topRightCorner(m, nc) = V_.transpose() * dense(interior_, contact_);
-  C.bottomLeftCorner(nc, m) = dense(contact_, interior_) * V_;
-  C.bottomRightCorner(nc, nc) = dense(contact_, contact_);
+  C.topLeftCorner(m, m) = V_.transpose() * (block(U, interior_, interior_) * V_);
+  C.topRightCorner(m, nc) = V_.transpose() * Matrix(block(U, interior_, contact_));
+  C.bottomLeftCorner(nc, m) = Matrix(block(U, contact_, interior_)) * V_;
+  C.bottomRightCorner(nc, nc) = Matrix(block(U, contact_, contact_));
   r.C_user = C.sparseView();
   return r;
 }
