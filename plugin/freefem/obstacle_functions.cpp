@@ -9,10 +9,21 @@
 //   NBM S(M, K, cdofs, cnormals, cgaps, dt = ..., mass = "redistributed",
 //         positions = xy, obstacle = bowl);
 //
+//   NBMObstacle cam("circle", c, radius = R, pivot = p0,
+//                   rotation = [0, Om, 0]);                        // turns about p0
+//   real tphi;                                                     // the script's phi:
+//   NBMObstacle ramp("distance", [0, 0], distance = y - 0.2 * x^2);        // fixed
+//   NBMObstacle wave("distance", [0, 0], distance = y - a * sin(x - tphi),
+//                    time = tphi);                                  // moving
+//
 // A motion is a time law [offset, rate, accel, omega1, cos1, sin1, ...]:
 // w(t) = offset + rate t + accel t^2/2 + sum (cos_j cos(omega_j t) + sin_j sin(omega_j t)),
-// for translation = (along direction = ..., or a plane's normal) and
-// radiusChange = (round obstacles).
+// for translation = (along direction = ..., or a plane's normal),
+// radiusChange = (round obstacles) and rotation = (the angle, radians, about
+// pivot = ... and, in 3D, rotationAxis = ...).
+// A "distance" expression is evaluated at the point (x, y, z) FreeFEM's
+// x, y, z read, with the script variable given as time = set to the time;
+// both are restored after each evaluation.
 #include "binding.hpp"
 
 namespace nbm_binding {
@@ -29,9 +40,27 @@ nbm::TimeLawDescription time_law(KN<double>* law, const char* name) {
   return d;
 }
 
+// phi of a "distance" obstacle: the script's expression at x (dim
+// coordinates) and time t, evaluated on the stack of the declaration (the
+// script's top level, where its variables live).
+std::function<double(const double*, double)> script_distance(Expression phi, Stack s, int dim,
+                                                              double* time) {
+  return [phi, s, dim, time](const double* x, double t) {
+    MeshPoint* mp = MeshPointStack(s);
+    const MeshPoint saved = *mp;
+    const double saved_time = time ? *time : 0;
+    if (time) *time = t;
+    mp->set(x[0], dim > 1 ? x[1] : 0.0, dim > 2 ? x[2] : 0.0);
+    const double value = GetAny<double>((*phi)(s));
+    *mp = saved;
+    if (time) *time = saved_time;
+    return value;
+  };
+}
+
 class ObstacleConstruct : public E_F0mps {
  public:
-  static const int n_name_param = 6;
+  static const int n_name_param = 12;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, kind, point;
@@ -53,6 +82,20 @@ class ObstacleConstruct : public E_F0mps {
       d->direction = vector_of<double>(GetAny<KN<double>*>((*nargs[3])(s)), "NBMObstacle", "direction");
     if (nargs[4]) d->translation = time_law(GetAny<KN<double>*>((*nargs[4])(s)), "translation");
     if (nargs[5]) d->radius_change = time_law(GetAny<KN<double>*>((*nargs[5])(s)), "radiusChange");
+    if (nargs[6]) d->rotation = time_law(GetAny<KN<double>*>((*nargs[6])(s)), "rotation");
+    if (nargs[7]) d->pivot = vector_of<double>(GetAny<KN<double>*>((*nargs[7])(s)), "NBMObstacle", "pivot");
+    if (nargs[8])
+      d->rotation_axis =
+          vector_of<double>(GetAny<KN<double>*>((*nargs[8])(s)), "NBMObstacle", "rotationAxis");
+    if (nargs[11]) d->fd_step = GetAny<double>((*nargs[11])(s));
+    double* time = nargs[10] ? GetAny<double*>((*nargs[10])(s)) : nullptr;
+    if (nargs[9]) {
+      d->distance = script_distance(nargs[9], s, static_cast<int>(d->point.size()), time);
+      d->moving = time != nullptr;
+    } else if (time) {
+      fail("NBMObstacle: time: given without distance = (it is the variable a distance "
+           "expression reads the time from)");
+    }
     // Checked now, where the script declares it, not at the NBM call.
     guarded("NBMObstacle", [&] { nbm::check_obstacle(*d); });
     h->destroy();
@@ -66,6 +109,9 @@ basicAC_F0::name_and_type ObstacleConstruct::name_param[] = {
     {"radius", &typeid(double)},          {"side", &typeid(string*)},
     {"axis", &typeid(KN<double>*)},       {"direction", &typeid(KN<double>*)},
     {"translation", &typeid(KN<double>*)}, {"radiusChange", &typeid(KN<double>*)},
+    {"rotation", &typeid(KN<double>*)},   {"pivot", &typeid(KN<double>*)},
+    {"rotationAxis", &typeid(KN<double>*)}, {"distance", &typeid(double)},
+    {"time", &typeid(double*)},           {"fdStep", &typeid(double)},
 };
 
 class ObstacleConstructOp : public OneOperator {

@@ -9,6 +9,8 @@
 #include <memory>
 #include <tuple>
 
+#include <Eigen/Geometry>
+
 #include "base/errors.hpp"
 #include "contact/contact_problem.hpp"
 #include "curved_problems.hpp"
@@ -93,6 +95,100 @@ TEST(RigidObstacle, BadInputNamed) {
   expect_throw_with(
       [] { nbm::make_cylinder(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1), 1, nbm::Side::kInside); },
       {"cylinder", "expected 3"});
+}
+
+// The obstacle's shape at y = Q^T (x - pivot) + pivot, Q from Eigen's
+// angle-axis rotation (not the code under test's Rodrigues formula).
+double turned_phi(const nbm::RigidObstacle& shape, const Eigen::Vector3d& pivot,
+                  const Eigen::Vector3d& axis, double theta, const Eigen::VectorXd& x, double t) {
+  const int d = shape.dim();
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  r.head(d) = x - pivot.head(d);
+  const Eigen::Vector3d y =
+      Eigen::AngleAxisd(-theta, axis.normalized()).toRotationMatrix() * r + pivot;
+  return shape.at(y.data(), t).phi;
+}
+
+TEST(RigidObstacle, TurningObstaclesAreTheirShapeTurned) {
+  nbm::TimeLaw angle;
+  angle.offset = 0.2, angle.rate = 1.5, angle.harmonics = {{3.0, 0.0, 0.1}};
+  // A bowl of radius 1 centred at (0.3, 0.1), turning about the origin: a cam
+  // whose centre runs on a circle, Q(theta) c.
+  const Eigen::Vector2d c(0.3, 0.1);
+  const auto cam = nbm::make_rotating(nbm::make_ball(c, 1.0, nbm::Side::kInside),
+                                      Eigen::Vector2d(0, 0), Eigen::VectorXd(), angle);
+  for (double t : {0.0, 0.4, 1.3}) {
+    const double th = angle.value(t);
+    const Eigen::Vector2d ct(std::cos(th) * c(0) - std::sin(th) * c(1),
+                             std::sin(th) * c(0) + std::cos(th) * c(1));
+    for (const Eigen::Vector2d& x : {Eigen::Vector2d(0.2, -0.5), Eigen::Vector2d(-0.4, 0.3)}) {
+      EXPECT_NEAR(cam->at(x.data(), t).phi, 1.0 - (x - ct).norm(), 1e-15);
+      expect_consistent(*cam, x, t);
+    }
+  }
+  EXPECT_FALSE(cam->fixed());
+  // A plane tilting about a point of its own, and one about another point.
+  const auto shape = [] { return nbm::make_plane(Eigen::Vector2d(0, -1), Eigen::Vector2d(0, 1)); };
+  for (const Eigen::Vector2d& pivot : {Eigen::Vector2d(0, -1), Eigen::Vector2d(0.5, 0.2)}) {
+    const auto table = nbm::make_rotating(shape(), pivot, Eigen::VectorXd(), angle);
+    const Eigen::Vector2d x(0.3, 0.2);
+    const Eigen::Vector3d p3(pivot(0), pivot(1), 0);
+    EXPECT_NEAR(table->at(x.data(), 0.7).phi,
+                turned_phi(*shape(), p3, Eigen::Vector3d::UnitZ(), angle.value(0.7), x, 0.7), 1e-15);
+    expect_consistent(*table, x, 0.7);
+    EXPECT_FALSE(table->flat()) << "its normal turns";
+  }
+  // A translating cylinder (its motion is the turning frame's) turned about a
+  // skew axis through a point off its own axis.
+  nbm::TimeLaw shift;
+  shift.harmonics = {{2.0, 0.05, -0.02}};
+  const auto cylinder = [&] {
+    return nbm::make_cylinder(Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 0, 0), 0.5,
+                              nbm::Side::kOutside, Eigen::Vector3d(0, 1, 1), shift);
+  };
+  const Eigen::Vector3d pivot(0.1, -0.2, 0.3), axis(1, 2, -0.5);
+  const auto drum = nbm::make_rotating(cylinder(), pivot, axis, angle);
+  const Eigen::Vector3d y(0.2, -0.3, 0.4);
+  for (double t : {0.0, 0.9}) {
+    EXPECT_NEAR(drum->at(y.data(), t).phi,
+                turned_phi(*cylinder(), pivot, axis, angle.value(t), y, t), 1e-14);
+    expect_consistent(*drum, y, t);
+  }
+  // A ball turning about its own centre does not move: d phi / dt = 0.
+  const auto spinning = nbm::make_rotating(
+      nbm::make_ball(Eigen::Vector3d(0, 0, -1), 0.7, nbm::Side::kOutside), Eigen::Vector3d(0, 0, -1),
+      Eigen::Vector3d(0, 1, 1), angle);
+  EXPECT_NEAR(spinning->at(y.data(), 0.5).phi_t, 0.0, 1e-15);
+  // A constant angle is a fixed obstacle, turned once.
+  nbm::TimeLaw tilt;
+  tilt.offset = 0.3;
+  EXPECT_TRUE(nbm::make_rotating(shape(), Eigen::Vector2d(0, -1), Eigen::VectorXd(), tilt)->fixed());
+}
+
+TEST(RigidObstacle, TurningBadInputNamed) {
+  const auto expect_throw_with = nbm_test::expect_throw_with<nbm::InputError>;
+  const auto plane2 = [] { return nbm::make_plane(Eigen::Vector2d(0, 0), Eigen::Vector2d(0, 1)); };
+  const auto ball3 = [] { return nbm::make_ball(Eigen::Vector3d(0, 0, 0), 1, nbm::Side::kInside); };
+  nbm::TimeLaw angle;
+  angle.rate = 1;
+  expect_throw_with([&] { nbm::make_rotating(plane2(), Eigen::Vector3d(0, 0, 0), Eigen::VectorXd(), angle); },
+                    {"obstacle pivot", "expected 2"});
+  expect_throw_with([&] { nbm::make_rotating(plane2(), Eigen::Vector2d(0, NAN), Eigen::VectorXd(), angle); },
+                    {"obstacle pivot", "non-finite"});
+  expect_throw_with(
+      [&] { nbm::make_rotating(plane2(), Eigen::Vector2d(0, 0), Eigen::Vector3d(0, 0, 1), angle); },
+      {"rotation axis", "given in 2D"});
+  expect_throw_with([&] { nbm::make_rotating(ball3(), Eigen::Vector3d(0, 0, 0), Eigen::VectorXd(), angle); },
+                    {"rotation axis", "expected 3"});
+  expect_throw_with(
+      [&] { nbm::make_rotating(ball3(), Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0, 0, 0), angle); },
+      {"rotation axis", "zero vector"});
+  nbm::TimeLaw bad;
+  bad.rate = NAN;
+  expect_throw_with([&] { nbm::make_rotating(plane2(), Eigen::Vector2d(0, 0), Eigen::VectorXd(), bad); },
+                    {"obstacle rotation", "non-finite"});
+  expect_throw_with([&] { nbm::make_rotating(nullptr, Eigen::Vector2d(0, 0), Eigen::VectorXd(), angle); },
+                    {"obstacle rotation", "no shape"});
 }
 
 // A body, its problem in the user's axes and the stepper, started at rest.
@@ -279,6 +375,56 @@ TEST(FollowingFrame, MovingBowlBalancesItsWork) {
     EXPECT_GT(work, 1e-2) << "the bowl does work";
     EXPECT_LT(drift, 0.02 * work);
   }
+}
+
+TEST(FollowingFrame, TurningEccentricBowlHoldsTheDiscAndBalancesItsWork) {
+  // A bowl of radius 1.25 centred at (0.1, 0) turning about the origin at
+  // omega = 2: its centre runs on a circle of radius 0.1 and drives the disc.
+  // The same run against the closed form of that moving circle (a distance
+  // function: phi = R - |x - c(t)|, grad and d phi / dt by hand) must give the
+  // same motion: the turned shape and its rate are checked through stepping.
+  const double R = 1.25, omega = 2, e = 0.1, rho = R - 0.5;
+  nbm::TimeLaw angle;
+  angle.rate = omega;
+  const Eigen::Vector2d c(rho * std::sin(0.3), -rho * std::cos(0.3));
+  auto closed_form = [=](const double* x, double t) {
+    const Eigen::Vector2d ct(e * std::cos(omega * t), e * std::sin(omega * t));
+    const Eigen::Vector2d vt(-omega * ct(1), omega * ct(0));
+    const Eigen::Vector2d r = Eigen::Vector2d(x[0], x[1]) - ct;
+    nbm::ObstaclePoint p;
+    p.phi = R - r.norm();
+    p.grad.head(2) = -r / r.norm();
+    p.phi_t = r.dot(vt) / r.norm();
+    return p;
+  };
+  std::vector<double> drifts;
+  for (double dt : {1e-3, 5e-4}) {
+    FrameRun run(nbm_test::disc(0.5, c, 8, 1, 1e4, 0.3, 10),
+                 nbm::make_rotating(nbm::make_ball(Eigen::Vector2d(e, 0), R, nbm::Side::kInside),
+                                    Eigen::Vector2d(0, 0), Eigen::VectorXd(), angle),
+                 dt);
+    FrameRun reference(nbm_test::disc(0.5, c, 8, 1, 1e4, 0.3, 10),
+                       nbm::make_distance_obstacle(2, closed_form, true, "moving circle"), dt);
+    const double E0 = run.balance();
+    double drift = 0, work = 0, difference = 0;
+    while (run.stepper->time() < 1.0) {
+      run.step();
+      reference.step();
+      run.expect_on_surface(kSurface);
+      drift = std::max(drift, std::abs(run.balance() - E0));
+      work = std::max(work, std::abs(run.stepper->energies().obstacle_work));
+      difference = std::max(difference, (run.stepper->u() - reference.stepper->u()).cwiseAbs().maxCoeff());
+    }
+    const double size = run.stepper->u().cwiseAbs().maxCoeff();
+    std::printf("turning bowl, dt = %g: obstacle work up to %.3e, balance off by %.2e, against the "
+                "closed form %.2e of %.2e\n",
+                dt, work, drift, difference, size);
+    EXPECT_GT(work, 1e-2) << "the bowl does work";
+    EXPECT_LT(drift, 0.005 * work);
+    EXPECT_LT(difference, 1e-9 * size);
+    drifts.push_back(drift);
+  }
+  EXPECT_LT(drifts[1], 0.6 * drifts[0]) << "the balance converges with dt";
 }
 
 TEST(FollowingFrame, RestartIsExactAcrossFrameUpdates) {

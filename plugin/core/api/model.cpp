@@ -1,6 +1,7 @@
 #include "api/model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "api/model_data.hpp"
@@ -37,8 +38,53 @@ TimeLaw time_law(const TimeLawDescription& d, const std::string& who) {
   return law;
 }
 
-// The core's obstacle for the option `obstacle` (method.md §10).
-std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d) {
+// A script's phi as an obstacle: its gradient and rate by central differences
+// (ObstacleDescription::distance).
+std::unique_ptr<RigidObstacle> distance_obstacle(const ObstacleDescription& d) {
+  const int dim = static_cast<int>(d.point.size());
+  if (dim < 1 || dim > 3)
+    throw InputError("obstacle point: " + std::to_string(dim) +
+                     " coordinates, expected 1, 2 or 3 (they give a distance's dimension)");
+  if (!d.distance) throw InputError("obstacle distance: no function given for kind \"distance\"");
+  if (!(std::isfinite(d.fd_step) && d.fd_step > 0 && d.fd_step < 0.1))
+    throw InputError("obstacle fdStep: " + std::to_string(d.fd_step) +
+                     ", expected 0 < fdStep < 0.1 (the relative step of the differences)");
+  const double at_point = d.distance(d.point.data(), 0.0);
+  if (!std::isfinite(at_point))
+    throw InputError("obstacle distance: phi at the point given is " + std::to_string(at_point) +
+                     " at t = 0, expected a finite value");
+  const auto phi = d.distance;
+  const double h0 = d.fd_step;
+  const bool moving = d.moving;
+  DistanceFunction f = [phi, h0, moving, dim](const double* x, double t) {
+    ObstaclePoint p;
+    p.phi = phi(x, t);
+    double scale = 1;
+    for (int i = 0; i < dim; ++i) scale = std::max(scale, std::abs(x[i]));
+    const double h = h0 * scale;
+    double y[3] = {0, 0, 0};
+    for (int i = 0; i < dim; ++i) y[i] = x[i];
+    for (int i = 0; i < dim; ++i) {
+      y[i] = x[i] + h;
+      const double plus = phi(y, t);
+      y[i] = x[i] - h;
+      const double minus = phi(y, t);
+      y[i] = x[i];
+      p.grad(i) = (plus - minus) / (2 * h);
+    }
+    if (moving) {
+      const double tau = h0 * std::max(1.0, std::abs(t));
+      p.phi_t = (phi(x, t + tau) - phi(x, t - tau)) / (2 * tau);
+    }
+    return p;
+  };
+  return make_distance_obstacle(dim, std::move(f), moving,
+                                std::string("the script's signed distance") +
+                                    (moving ? " (moving)" : ""));
+}
+
+// The obstacle's shape with its own motion (translation, radius change).
+std::unique_ptr<RigidObstacle> shape_of(const ObstacleDescription& d) {
   Side side = Side::kOutside;
   if (d.side == "inside")
     side = Side::kInside;
@@ -46,9 +92,18 @@ std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d)
     throw InputError("obstacle side: \"" + d.side + "\", expected \"outside\" or \"inside\"");
   const TimeLaw move = time_law(d.translation, "obstacle translation");
   const TimeLaw grow = time_law(d.radius_change, "obstacle radius change");
+  const bool grows = !grow.constant() || grow.offset != 0;
+  if (d.kind == "distance") {
+    if (grows || !move.constant() || move.offset != 0 || d.radius != 0)
+      throw InputError("obstacle distance: translation, radius or radiusChange given with kind "
+                       "\"distance\", whose function gives the motion (moving = true)");
+    return distance_obstacle(d);
+  }
+  if (d.distance)
+    throw InputError("obstacle distance: a function given with kind \"" + d.kind +
+                     "\" (it is used by kind \"distance\" only)");
   if (d.kind == "plane") {
-    if (!grow.constant() || grow.offset != 0)
-      throw InputError("obstacle radius change: given for a plane, which has no radius");
+    if (grows) throw InputError("obstacle radius change: given for a plane, which has no radius");
     return make_plane(vector_of(d.point), vector_of(d.axis), move);
   }
   if (d.kind == "circle" || d.kind == "sphere") {
@@ -62,7 +117,22 @@ std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d)
     return make_cylinder(vector_of(d.point), vector_of(d.axis), d.radius, side,
                          vector_of(d.direction), move, grow);
   throw InputError("obstacle kind: \"" + d.kind +
-                   "\", expected \"plane\", \"circle\", \"sphere\" or \"cylinder\"");
+                   "\", expected \"plane\", \"circle\", \"sphere\", \"cylinder\" or \"distance\"");
+}
+
+// The core's obstacle for the option `obstacle` (method.md §10): the shape,
+// turned as a whole if it rotates.
+std::shared_ptr<const RigidObstacle> make_obstacle(const ObstacleDescription& d) {
+  std::unique_ptr<RigidObstacle> shape = shape_of(d);
+  if (!d.rotation) {
+    if (!d.pivot.empty() || !d.rotation_axis.empty())
+      throw InputError(std::string("obstacle ") + (d.pivot.empty() ? "rotationAxis" : "pivot") +
+                       ": given without a rotation (rotation = [theta0, omega, ...])");
+    return shape;
+  }
+  const TimeLaw angle = time_law(*d.rotation, "obstacle rotation");
+  return make_rotating(std::move(shape), vector_of(d.pivot.empty() ? d.point : d.pivot),
+                       vector_of(d.rotation_axis), angle);
 }
 
 // The node coordinates of mass = "redistributed", one row per dof.

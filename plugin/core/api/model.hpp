@@ -6,6 +6,7 @@
 // from it without a time step. Free of Eigen and FreeFEM, like solver.hpp.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -32,9 +33,11 @@ struct TimeLawDescription {
 /// §10). Needs mass "redistributed" (every component of the contact nodes
 /// massless) and scheme "newmark".
 struct ObstacleDescription {
-  /// "plane", "circle" (2D), "sphere" (3D) or "cylinder" (3D).
+  /// "plane", "circle" (2D), "sphere" (3D), "cylinder" (3D) or "distance" (a
+  /// signed distance given as a function, `distance` below).
   std::string kind;
-  /// A point of the plane, the centre, or a point of the cylinder's axis.
+  /// A point of the plane, the centre, or a point of the cylinder's axis; for
+  /// "distance", any point (it gives the dimension and the default pivot).
   std::vector<double> point;
   /// The plane's normal (out of the obstacle, towards the body), or the
   /// cylinder's axis; normalised.
@@ -47,6 +50,20 @@ struct ObstacleDescription {
   /// change of radius radius_change(t).
   std::vector<double> direction;
   TimeLawDescription translation, radius_change;
+  /// A rotation of the whole obstacle (its own motion included) by the angle
+  /// rotation(t), radians, counter-clockwise about `rotation_axis` (3D; empty
+  /// in 2D) through `pivot` (default: `point`); none if not given.
+  std::optional<TimeLawDescription> rotation;
+  std::vector<double> pivot, rotation_axis;
+  /// kind "distance": phi(x, t) (x has point.size() coordinates), positive
+  /// where the body is and zero on the obstacle's surface, a signed distance
+  /// or any smooth function with the same zero set and a nonzero gradient
+  /// there. Its gradient and its rate d phi / dt are central differences of
+  /// steps fd_step * max(1, |x|_inf) and fd_step * max(1, |t|); `moving` says
+  /// whether phi depends on t.
+  std::function<double(const double* x, double t)> distance;
+  bool moving = false;
+  double fd_step = 1e-5;
 };
 
 /// Throws InputError naming the field if `obstacle` does not describe an

@@ -179,6 +179,68 @@ class DistanceObstacle final : public RigidObstacle {
   std::string description_;
 };
 
+// A shape in a frame turning by theta(t) about a pivot (make_rotating):
+// with r = y - pivot the point in the shape's frame, y = Q^T (x - pivot) + pivot,
+//   grad phi(x) = Q grad phi_s(y),
+//   d phi / dt  = phi_s,t(y) + grad phi_s(y) . dy/dt,  dy/dt = -theta' a x r
+// (d/dt Q^T = -theta' [a]x Q^T, and Q^T commutes with [a]x; method.md §10).
+class RotatingObstacle final : public RigidObstacle {
+ public:
+  RotatingObstacle(std::unique_ptr<RigidObstacle> shape, const Vector& pivot, const Vector& axis,
+                   const TimeLaw& angle)
+      : RigidObstacle(shape->dim()), shape_(std::move(shape)), angle_(angle) {
+    const int d = dim();
+    if (d < 2) throw InputError("obstacle rotation: a 1D obstacle cannot turn");
+    if (pivot.size() != d)
+      throw InputError("obstacle pivot: " + std::to_string(pivot.size()) + " coordinates, expected " +
+                       std::to_string(d) + " (the obstacle's dimension)");
+    check_finite(pivot, "obstacle pivot");
+    angle_.check("obstacle rotation");
+    pivot_.setZero();
+    pivot_.head(d) = pivot;
+    if (d == 2) {
+      if (axis.size() != 0)
+        throw InputError("obstacle rotation axis: given in 2D, where the rotation is in the plane");
+      axis_ = Eigen::Vector3d::UnitZ();
+    } else {
+      if (axis.size() != 3)
+        throw InputError("obstacle rotation axis: " + std::to_string(axis.size()) +
+                         " coordinates, expected 3 (the direction a 3D obstacle turns about)");
+      axis_ = unit(axis, "obstacle rotation axis");
+    }
+  }
+  ObstaclePoint at(const double* x, double t) const override {
+    const int d = dim();
+    const double theta = angle_.value(t), rate = angle_.first(t);
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (int i = 0; i < d; ++i) r(i) = x[i] - pivot_(i);
+    const Eigen::Vector3d r_s = turn(r, -theta);  // Q^T (x - pivot)
+    const Eigen::Vector3d y = r_s + pivot_;
+    ObstaclePoint p = shape_->at(y.data(), t);
+    const Eigen::Vector3d grad_s = p.grad;
+    p.phi_t += grad_s.dot(-rate * axis_.cross(r_s));
+    p.grad = turn(grad_s, theta);
+    for (int i = d; i < 3; ++i) p.grad(i) = 0;
+    return p;
+  }
+  bool fixed() const override { return angle_.constant() && shape_->fixed(); }
+  std::string describe() const override {
+    Vector pivot = pivot_.head(dim());
+    return shape_->describe() + ", turning about " + text(pivot);
+  }
+
+ private:
+  // v turned by the angle theta about axis_ (Rodrigues' formula).
+  Eigen::Vector3d turn(const Eigen::Vector3d& v, double theta) const {
+    const double c = std::cos(theta), s = std::sin(theta);
+    return c * v + s * axis_.cross(v) + (1 - c) * axis_.dot(v) * axis_;
+  }
+
+  std::unique_ptr<RigidObstacle> shape_;
+  Eigen::Vector3d pivot_, axis_;
+  TimeLaw angle_;
+};
+
 }  // namespace
 
 double TimeLaw::value(double t) const {
@@ -246,6 +308,13 @@ std::unique_ptr<RigidObstacle> make_cylinder(const Vector& point, const Vector& 
                      " coordinates, expected 3 each (in 2D, a cylinder is a circle)");
   return std::make_unique<RoundObstacle>("cylinder", point, axis, R, side, direction,
                                          translation, radius_change);
+}
+
+std::unique_ptr<RigidObstacle> make_rotating(std::unique_ptr<RigidObstacle> shape,
+                                             const Vector& pivot, const Vector& axis,
+                                             const TimeLaw& angle) {
+  if (!shape) throw InputError("obstacle rotation: no shape given");
+  return std::make_unique<RotatingObstacle>(std::move(shape), pivot, axis, angle);
 }
 
 std::unique_ptr<RigidObstacle> make_distance_obstacle(int dim, DistanceFunction phi, bool moving,

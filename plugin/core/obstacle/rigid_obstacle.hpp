@@ -87,6 +87,16 @@ std::unique_ptr<RigidObstacle> make_cylinder(const Vector& point, const Vector& 
                                              const TimeLaw& translation = {},
                                              const TimeLaw& radius_change = {});
 
+/// `shape` turned by the angle theta(t) (radians, counter-clockwise about
+/// `axis`) around the point `pivot`: phi(x, t) = phi_s(y, t) with
+/// y = Q(t)^T (x - pivot) + pivot, Q(t) the rotation by theta(t). The shape's
+/// own motion (translation, radius change) is that of the turning frame: a
+/// cam, a tilting table, an eccentric rotor. In 2D the rotation is in the
+/// plane (`axis` empty); in 3D `axis` is its direction (any length).
+std::unique_ptr<RigidObstacle> make_rotating(std::unique_ptr<RigidObstacle> shape,
+                                             const Vector& pivot, const Vector& axis,
+                                             const TimeLaw& angle);
+
 /// A signed distance given by a function (a script's): it fills phi, grad and
 /// phi_t. `moving` says whether phi_t may be nonzero.
 using DistanceFunction = std::function<ObstaclePoint(const double* x, double t)>;
