@@ -28,12 +28,16 @@ namespace nbm_binding {
 struct ModelHandle {
   using Curve = std::shared_ptr<const nbm::OrbitSequence>;
   std::shared_ptr<const nbm::Model>* model;  // null until constructed
+  // The periodic tools' model of one with obstacle= (its obstacle
+  // linearised: periodic_model_of), made at the first periodic call.
+  std::shared_ptr<const nbm::Model>* linearised;
   nbm::OrbitReport* orbit;     // the last periodic orbit (orbit_functions.cpp)
   nbm::OrbitReport* previous;  // the one before
   Curve* curve;                // the last backbone's or response curve's orbits
   Curve* doubled;              // its period-doubled branch's (doubling = true)
   void init() {
     model = nullptr;
+    linearised = nullptr;
     orbit = nullptr;
     previous = nullptr;
     curve = doubled = nullptr;
@@ -71,11 +75,14 @@ struct ModelHandle {
   /// Makes `m` the model of the handle; the orbits of the last one go.
   void set_model(std::shared_ptr<const nbm::Model> m) {
     forget_orbits();
+    delete linearised;
+    linearised = nullptr;
     delete model;
     model = new std::shared_ptr<const nbm::Model>(std::move(m));
   }
   void destroy() {
     forget_orbits();
+    delete linearised;
     delete model;
     init();
   }
@@ -158,15 +165,16 @@ inline const nbm::Model& model_of(ModelHandle* h, const char* function) {
 }
 
 /// The model of a periodic call: one whose contact nodes have fixed normals
-/// and gaps (the periodic tools do not follow an obstacle= frame).
+/// and gaps. A model with obstacle= gives its obstacle linearised at the
+/// reference configuration (Model::with_obstacle_linearised), made once and
+/// kept with the handle, whose orbits refer to it.
 inline const nbm::Model& periodic_model_of(ModelHandle* h, const char* function) {
   const nbm::Model& m = model_of(h, function);
-  if (m.options().obstacle)
-    fail(std::string(function) + ": the model holds its obstacle with a contact frame that "
-         "follows the body (obstacle=), which the periodic tools do not follow; build the "
-         "model without obstacle=, with the obstacle's contact description (normals and "
-         "gaps along them, e.g. nbmContactCircle)");
-  return m;
+  if (!m.options().obstacle) return m;
+  if (!h->linearised)
+    h->linearised = new std::shared_ptr<const nbm::Model>(
+        guarded(function, [&] { return m.with_obstacle_linearised(); }));
+  return **h->linearised;
 }
 
 inline nbm::CooMatrix coo_of(Matrice_Creuse<double>* A, const char* function, const char* name) {

@@ -67,7 +67,10 @@ nbm_bad_orbit_case(continue-step [[nbmContinueOrbit: step: expected a finite ste
 nbm_bad_orbit_case(continue-harmonic-balance [[nbmContinueOrbit: continuation follows orbits computed by shooting]])
 nbm_bad_orbit_case(continue-load [[nbmContinueOrbit: the two orbits were computed on different problems, loads]])
 nbm_bad_orbit_case(unconstructed [[nbmPeriodicOrbit: the model was not constructed]])
-nbm_bad_orbit_case(obstacle-model [[nbmPeriodicOrbit: the model holds its obstacle with a contact frame that follows the body \(obstacle=\)]])
+nbm_bad_orbit_case(obstacle-moving [[nbmPeriodicOrbit: obstacle: plane through .* moves by its own law, which the periodic tools do not take]])
+# A model with obstacle= in the periodic tools: the obstacle linearised at the
+# reference configuration, the same orbits as the helpers' description of it.
+nbm_bad_valid(orbit-valid-obstacle ${NBM_ORBIT_CASES} -case valid-obstacle)
 
 # Backbones from grazing (edp/plate-backbone.edp, method.md §6): with the
 # consistent mass the script computes the linear frequency of the plate's

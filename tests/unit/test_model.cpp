@@ -3,6 +3,8 @@
 // its contact problem, and meet the same checks; a model needs no time step.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "api/model.hpp"
@@ -99,6 +101,45 @@ TEST(Model, ReplacingContactsGivesTheIntegratorItsOwnModel) {
   EXPECT_EQ(s.n_contact(), model->n_contact() - 1);
   EXPECT_EQ(model->n_contact(), static_cast<long>(p.contact.gaps.size()));  // unchanged
   s.step(u, v, p.F);
+}
+
+TEST(Model, ThePeriodicToolsGetTheObstacleLinearisedAtTheReference) {
+  // A model holding a circle below the plate (obstacle=): its linearised
+  // model has, at each contact node x_k, the normal -(x_k - c)/|x_k - c| and
+  // the gap |x_k - c| - R, computed here by hand.
+  const InclinedPlate p;
+  ModelOptions o = p.model_options("redistributed");
+  double lowest = 1e300;
+  for (std::size_t i = 1; i < p.positions.size(); i += 2) lowest = std::min(lowest, p.positions[i]);
+  nbm::ObstacleDescription circle;
+  circle.kind = "circle";
+  circle.point = {0.3, lowest - 10};
+  circle.radius = 9.5;
+  o.obstacle = circle;
+  const Model held(p.M, p.K, p.contact, o);
+  const auto linear = held.with_obstacle_linearised();
+  EXPECT_FALSE(linear->options().obstacle);
+  const nbm::ContactSet& c = linear->problem().contacts();
+  ASSERT_EQ(c.size(), static_cast<nbm::Index>(p.contact.gaps.size()));
+  for (nbm::Index k = 0; k < c.size(); ++k) {
+    const long dx = p.contact.dofs[2 * k], dy = p.contact.dofs[2 * k + 1];
+    EXPECT_EQ(c.dof(k, 0), dx);
+    const double rx = p.positions[2 * dx] - 0.3, ry = p.positions[2 * dy + 1] - (lowest - 10);
+    const double r = std::hypot(rx, ry);
+    EXPECT_NEAR(c.normal(k, 0), -rx / r, 1e-15);
+    EXPECT_NEAR(c.normal(k, 1), -ry / r, 1e-15);
+    EXPECT_NEAR(c.gaps()(k), r - 9.5, 1e-14);
+  }
+  EXPECT_TRUE(linear->massless_boundary());
+  // Without an obstacle, or with one that moves: refused by name.
+  expect_throw_with<nbm::InputError>(
+      [&] { Model(p.M, p.K, p.contact, p.model_options("redistributed")).with_obstacle_linearised(); },
+      {"obstacle", "no obstacle="});
+  circle.translation.rate = 0.1;
+  circle.direction = {0, 1};
+  o.obstacle = circle;
+  expect_throw_with<nbm::InputError>([&] { Model(p.M, p.K, p.contact, o).with_obstacle_linearised(); },
+                                     {"obstacle: circle", "moves by its own law", "gapCos"});
 }
 
 TEST(ModelErrors, TheModelChecksItsOwnOptions) {

@@ -96,7 +96,7 @@ std::unique_ptr<RigidObstacle> shape_of(const ObstacleDescription& d) {
   if (d.kind == "distance") {
     if (grows || !move.constant() || move.offset != 0 || d.radius != 0)
       throw InputError("obstacle distance: translation, radius or radiusChange given with kind "
-                       "\"distance\", whose function gives the motion (moving = true)");
+                       "\"distance\", whose expression gives the motion (time =)");
     return distance_obstacle(d);
   }
   if (d.distance)
@@ -247,6 +247,45 @@ std::shared_ptr<const Model> Model::with_contacts(const ContactDescription& cont
   d->obstacle = mine.obstacle;
   build_problem(*d, contact);
   return std::shared_ptr<const Model>(new Model(std::move(d)));
+}
+
+std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
+  const Data& mine = *data_;
+  if (!mine.obstacle) throw InputError("obstacle: the model has none to linearise (no obstacle=)");
+  const RigidObstacle& o = *mine.obstacle;
+  if (!o.fixed())
+    throw InputError("obstacle: " + o.describe() +
+                     " moves by its own law, which the periodic tools do not take (their "
+                     "period is the orbit's); give a moving obstacle as the gap harmonics "
+                     "gapCos, gapSin of a forced call on a model without obstacle=");
+  // The contact nodes in the user's axes (contact_problem): d dofs each.
+  const ContactSet& nodes = mine.problem->contacts();
+  const int d = nodes.dim();
+  ContactDescription linear;
+  for (Index k = 0; k < nodes.size(); ++k) {
+    Eigen::Vector3d x = Eigen::Vector3d::Zero();
+    for (int j = 0; j < d; ++j) {
+      linear.dofs.push_back(static_cast<long>(nodes.dof(k, j)));
+      x(j) = mine.positions(nodes.dof(k, j), j);
+    }
+    const ObstaclePoint p = o.at(x.data(), 0.0);
+    const double g = p.grad.norm();
+    if (!(g > 0) || !std::isfinite(p.phi))
+      throw InputError("obstacle: no normal at contact node " + std::to_string(k) +
+                       " (zero or non-finite gradient of " + o.describe() + ")");
+    for (int j = 0; j < d; ++j) linear.normals.push_back(-p.grad(j) / g);
+    linear.gaps.push_back(p.phi / g);
+  }
+  auto data = std::make_unique<Data>();
+  data->options = mine.options;
+  data->options.obstacle.reset();
+  data->fixed = mine.fixed;
+  data->M_user = mine.M_user;
+  data->K_user = mine.K_user;
+  data->damping_user = mine.damping_user;
+  data->positions = mine.positions;
+  build_problem(*data, linear);
+  return std::shared_ptr<const Model>(new Model(std::move(data)));
 }
 
 long Model::n_dofs() const { return data_->problem->n_dofs(); }

@@ -152,6 +152,13 @@ class Model {
   /// Solver::replace_contacts), built from the matrices as given, so that a
   /// model built from scratch with that description is the same bit for bit.
   std::shared_ptr<const Model> with_contacts(const ContactDescription& contact) const;
+  /// The model of the periodic tools for a model with the option `obstacle`:
+  /// the same contact nodes with the obstacle linearised at the reference
+  /// configuration (method.md §8), normal n_k = -grad phi / |grad phi| at x_k
+  /// and gap phi(x_k) / |grad phi| along it, and the option dropped (their
+  /// exact flow needs fixed normals; exact for a plane). Throws InputError
+  /// if the model has no obstacle, or one that moves.
+  std::shared_ptr<const Model> with_obstacle_linearised() const;
 
   struct Data;  ///< api/model_data.hpp: what the time integrator reads
   const Data& data() const { return *data_; }
