@@ -166,12 +166,15 @@ inline const nbm::Model& model_of(ModelHandle* h, const char* function) {
 
 /// The model of a periodic call: one whose contact nodes have fixed normals
 /// and gaps. A model with obstacle= gives its obstacle linearised at the
-/// reference configuration (Model::with_obstacle_linearised), made once and
-/// kept with the handle, whose orbits refer to it.
+/// reference configuration (Model::with_obstacle_linearised, which refuses
+/// one that moves), made once and kept with the handle, whose orbits refer
+/// to it.
 inline const nbm::Model& periodic_model_of(ModelHandle* h, const char* function) {
   const nbm::Model& m = model_of(h, function);
   if (!m.options().obstacle) return m;
-  if (!h->linearised)
+  // One that moves is refused here (the handle may hold the linearisation
+  // of a forced orbit's, made for its frequency: orbit_functions.cpp).
+  if (!h->linearised || m.obstacle_moves())
     h->linearised = new std::shared_ptr<const nbm::Model>(
         guarded(function, [&] { return m.with_obstacle_linearised(); }));
   return **h->linearised;

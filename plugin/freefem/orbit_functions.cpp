@@ -250,15 +250,40 @@ class ForcedCall : public E_F0mps {
 
   /// The inputs, checked; `nargs` begins with the six named arguments of
   /// forced_options, and holds gapCos, gapSin, modes at `gaps`, `gaps` + 1,
-  /// `gaps` + 2.
-  ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn) const {
+  /// `gaps` + 2. A single orbit (`one_orbit`) on a model whose obstacle=
+  /// moves takes the obstacle's gap harmonics at omega
+  /// (Model::with_obstacle_harmonics); that model replaces the handle's
+  /// linearised one, and the orbits computed on it go.
+  ForcedInputs gather(Stack s, const Expression* nargs, int gaps, const char* fn,
+                      bool one_orbit = false) const {
     ForcedInputs in;
     in.h = GetAny<ModelHandle*>((*handle)(s));
-    in.model = &periodic_model_of(in.h, fn);
+    const bool moving = one_orbit && model_of(in.h, fn).obstacle_moves();
+    if (moving) {
+      if (nargs[gaps] || nargs[gaps + 1])
+        fail(std::string(fn) + ": gapCos, gapSin: given with an obstacle= that moves by its own "
+             "law, whose motion gives the gap harmonics");
+      const double w = GetAny<double>((*omega)(s));
+      nbm::ObstacleHarmonics oh =
+          guarded(fn, [&] { return model_of(in.h, fn).with_obstacle_harmonics(w); });
+      in.h->forget_orbits();
+      delete in.h->linearised;
+      in.h->linearised = new std::shared_ptr<const nbm::Model>(std::move(oh.model));
+      in.model = in.h->linearised->get();
+      in.options.gap_cos = std::move(oh.gap_cos);
+      in.options.gap_sin = std::move(oh.gap_sin);
+    } else {
+      in.model = &periodic_model_of(in.h, fn);
+    }
     in.U = GetAny<KN<double>*>((*u)(s));
     in.V = GetAny<KN<double>*>((*v)(s));
     if (in.U == in.V) fail(std::string(fn) + ": u and v must be different arrays");
-    in.options = forced_options(*in.model, nargs, s, GetAny<double>((*omega)(s)), fn);
+    {
+      nbm::ForcedOrbitOptions o = forced_options(*in.model, nargs, s, GetAny<double>((*omega)(s)), fn);
+      o.gap_cos = std::move(in.options.gap_cos);
+      o.gap_sin = std::move(in.options.gap_sin);
+      in.options = std::move(o);
+    }
     in.u = vector_of<double>(in.U, fn, "u");
     in.v = vector_of<double>(in.V, fn, "v");
     in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");
@@ -302,7 +327,7 @@ class ForcedOrbit : public ForcedCall<H> {
 
   AnyType operator()(Stack s) const override {
     const char* fn = "nbmForcedOrbit";
-    ForcedInputs in = this->gather(s, nargs, 8, fn);
+    ForcedInputs in = this->gather(s, nargs, 8, fn, true);
     if (nargs[6]) in.options.method = *GetAny<string*>((*nargs[6])(s));
     if (nargs[7]) in.options.harmonics = static_cast<int>(GetAny<long>((*nargs[7])(s)));
     auto report = guarded(fn, [&] {

@@ -142,6 +142,44 @@ TEST(Model, ThePeriodicToolsGetTheObstacleLinearisedAtTheReference) {
                                      {"obstacle: circle", "moves by its own law", "gapCos"});
 }
 
+TEST(Model, AForcedOrbitGetsTheMovingObstaclesGapHarmonics) {
+  // A ground plane under the plate moving along its normal by
+  // w(t) = a1 cos(omega t) + b1 sin(omega t) + a2 cos(2 omega t): every node's
+  // gap is g0 - w(t), so the harmonics are -a1, -b1 (k = 1) and -a2 (k = 2),
+  // the mean g0 = the distance at rest (to round-off of the discrete
+  // Fourier sums: 1e-13 of the gaps).
+  const InclinedPlate p;
+  ModelOptions o = p.model_options("redistributed");
+  double lowest = 1e300;
+  for (std::size_t i = 1; i < p.positions.size(); i += 2) lowest = std::min(lowest, p.positions[i]);
+  const double omega = 7, a1 = 0.003, b1 = -0.002, a2 = 0.001;
+  nbm::ObstacleDescription ground;
+  ground.kind = "plane";
+  ground.point = {0, lowest - 0.01};
+  ground.axis = {0, 1};
+  ground.translation.harmonics = {omega, a1, b1, 2 * omega, a2, 0};
+  o.obstacle = ground;
+  const Model held(p.M, p.K, p.contact, o);
+  EXPECT_TRUE(held.obstacle_moves());
+  const nbm::ObstacleHarmonics h = held.with_obstacle_harmonics(omega);
+  ASSERT_EQ(h.gap_cos.size(), 2u);
+  ASSERT_EQ(h.gap_sin.size(), 2u);
+  const nbm::ContactSet& c = h.model->problem().contacts();
+  for (nbm::Index k = 0; k < c.size(); ++k) {
+    const long dy = p.contact.dofs[2 * k + 1];
+    EXPECT_NEAR(c.gaps()(k), p.positions[2 * dy + 1] - (lowest - 0.01), 1e-15);
+    EXPECT_NEAR(h.gap_cos[0][k], -a1, 1e-15);
+    EXPECT_NEAR(h.gap_sin[0][k], -b1, 1e-15);
+    EXPECT_NEAR(h.gap_cos[1][k], -a2, 1e-15);
+    EXPECT_NEAR(h.gap_sin[1][k], 0.0, 1e-15);
+  }
+  // A frequency the law is not a sum of harmonics of: refused.
+  expect_throw_with<nbm::InputError>([&] { held.with_obstacle_harmonics(1.5 * omega); },
+                                     {"not periodic with the excitation's period"});
+  expect_throw_with<nbm::InputError>([&] { held.with_obstacle_linearised(); },
+                                     {"moves by its own law", "nbmForcedOrbit"});
+}
+
 TEST(ModelErrors, TheModelChecksItsOwnOptions) {
   const InclinedPlate p;
   ModelOptions o;

@@ -249,33 +249,55 @@ std::shared_ptr<const Model> Model::with_contacts(const ContactDescription& cont
   return std::shared_ptr<const Model>(new Model(std::move(d)));
 }
 
-std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
-  const Data& mine = *data_;
-  if (!mine.obstacle) throw InputError("obstacle: the model has none to linearise (no obstacle=)");
-  const RigidObstacle& o = *mine.obstacle;
-  if (!o.fixed())
-    throw InputError("obstacle: " + o.describe() +
-                     " moves by its own law, which the periodic tools do not take (their "
-                     "period is the orbit's); give a moving obstacle as the gap harmonics "
-                     "gapCos, gapSin of a forced call on a model without obstacle=");
-  // The contact nodes in the user's axes (contact_problem): d dofs each.
-  const ContactSet& nodes = mine.problem->contacts();
-  const int d = nodes.dim();
-  ContactDescription linear;
+namespace {
+
+// The contact nodes of a model with obstacle= and their reference
+// positions x_k (the nodes' d dofs in the user's axes, contact_problem).
+struct ObstacleNodes {
+  std::vector<long> dofs;
+  std::vector<Eigen::Vector3d> x;
+  int d = 0;
+};
+
+ObstacleNodes obstacle_nodes(const Model::Data& data) {
+  const ContactSet& nodes = data.problem->contacts();
+  ObstacleNodes out;
+  out.d = nodes.dim();
   for (Index k = 0; k < nodes.size(); ++k) {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int j = 0; j < d; ++j) {
-      linear.dofs.push_back(static_cast<long>(nodes.dof(k, j)));
-      x(j) = mine.positions(nodes.dof(k, j), j);
+    for (int j = 0; j < out.d; ++j) {
+      out.dofs.push_back(static_cast<long>(nodes.dof(k, j)));
+      x(j) = data.positions(nodes.dof(k, j), j);
     }
-    const ObstaclePoint p = o.at(x.data(), 0.0);
+    out.x.push_back(x);
+  }
+  return out;
+}
+
+// The obstacle at time t at each node: the unit normal -grad phi / |grad phi|
+// (into `normals`, if given) and the gap phi / |grad phi| along it.
+std::vector<double> obstacle_gaps(const RigidObstacle& o, const ObstacleNodes& nodes, double t,
+                                  std::vector<double>* normals) {
+  std::vector<double> gaps;
+  for (std::size_t k = 0; k < nodes.x.size(); ++k) {
+    const ObstaclePoint p = o.at(nodes.x[k].data(), t);
     const double g = p.grad.norm();
     if (!(g > 0) || !std::isfinite(p.phi))
       throw InputError("obstacle: no normal at contact node " + std::to_string(k) +
                        " (zero or non-finite gradient of " + o.describe() + ")");
-    for (int j = 0; j < d; ++j) linear.normals.push_back(-p.grad(j) / g);
-    linear.gaps.push_back(p.phi / g);
+    if (normals)
+      for (int j = 0; j < nodes.d; ++j) normals->push_back(-p.grad(j) / g);
+    gaps.push_back(p.phi / g);
   }
+  return gaps;
+}
+
+}  // namespace
+
+// A copy of `mine` without the option obstacle, with the contact
+// description `linear` (the same nodes, fixed normals).
+std::shared_ptr<const Model> Model::without_obstacle(const ContactDescription& linear) const {
+  const Data& mine = *data_;
   auto data = std::make_unique<Data>();
   data->options = mine.options;
   data->options.obstacle.reset();
@@ -286,6 +308,86 @@ std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
   data->positions = mine.positions;
   build_problem(*data, linear);
   return std::shared_ptr<const Model>(new Model(std::move(data)));
+}
+
+bool Model::obstacle_moves() const { return data_->obstacle && !data_->obstacle->fixed(); }
+
+std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
+  const Data& mine = *data_;
+  if (!mine.obstacle) throw InputError("obstacle: the model has none to linearise (no obstacle=)");
+  const RigidObstacle& o = *mine.obstacle;
+  if (!o.fixed())
+    throw InputError("obstacle: " + o.describe() +
+                     " moves by its own law, which the periodic tools take only in a forced "
+                     "orbit (nbmForcedOrbit) whose excitation period is the law's; elsewhere give "
+                     "its motion as the gap harmonics gapCos, gapSin on a model without obstacle=");
+  const ObstacleNodes nodes = obstacle_nodes(mine);
+  ContactDescription linear;
+  linear.dofs = nodes.dofs;
+  linear.gaps = obstacle_gaps(o, nodes, 0.0, &linear.normals);
+  return without_obstacle(linear);
+}
+
+ObstacleHarmonics Model::with_obstacle_harmonics(double omega) const {
+  const Data& mine = *data_;
+  if (!mine.obstacle) throw InputError("obstacle: the model has none to linearise (no obstacle=)");
+  if (!(std::isfinite(omega) && omega > 0))
+    throw InputError("omega: " + std::to_string(omega) + ", expected a finite omega > 0");
+  const RigidObstacle& o = *mine.obstacle;
+  const ObstacleNodes nodes = obstacle_nodes(mine);
+  ContactDescription linear;
+  linear.dofs = nodes.dofs;
+  obstacle_gaps(o, nodes, 0.0, &linear.normals);  // the normals at t = 0
+  // The gaps sampled over one period, their mean and harmonics k omega by
+  // the discrete Fourier sums of N samples (exact for k < N / 2), checked
+  // between the samples: a law that is not periodic with 2 pi / omega, or
+  // has harmonics beyond N / 2, does not pass.
+  const int N = 128, H = N / 2 - 1;
+  const double T = 2 * std::acos(-1.0) / omega;
+  const Index n_c = static_cast<Index>(nodes.x.size());
+  Matrix g(N, n_c);
+  for (int s = 0; s < N; ++s) {
+    const std::vector<double> gs = obstacle_gaps(o, nodes, s * T / N, nullptr);
+    for (Index k = 0; k < n_c; ++k) g(s, k) = gs[k];
+  }
+  const Vector mean = g.colwise().mean().transpose();
+  Matrix c = Matrix::Zero(H, n_c), sn = Matrix::Zero(H, n_c);
+  for (int h = 1; h <= H; ++h)
+    for (int s = 0; s < N; ++s) {
+      const double a = omega * h * s * T / N;
+      c.row(h - 1) += (2.0 / N) * std::cos(a) * g.row(s);
+      sn.row(h - 1) += (2.0 / N) * std::sin(a) * g.row(s);
+    }
+  const double scale = std::max(g.cwiseAbs().maxCoeff(), 1e-300);
+  int last = 0;  // the highest harmonic that is not round-off
+  for (int h = 1; h <= H; ++h)
+    if (c.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale ||
+        sn.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale)
+      last = h;
+  for (int s = 0; s < N; ++s) {
+    const double t = (s + 0.5) * T / N;
+    const std::vector<double> gs = obstacle_gaps(o, nodes, t, nullptr);
+    for (Index k = 0; k < n_c; ++k) {
+      double series = mean(k);
+      for (int h = 1; h <= last; ++h)
+        series += c(h - 1, k) * std::cos(h * omega * t) + sn(h - 1, k) * std::sin(h * omega * t);
+      if (!(std::abs(series - gs[k]) <= 1e-9 * scale))
+        throw InputError("obstacle: " + o.describe() + ": the gap of contact node " +
+                         std::to_string(k) + " is not periodic with the excitation's period 2 pi / "
+                         "omega = " + std::to_string(T) + " (off by " +
+                         std::to_string(std::abs(series - gs[k])) + " at t = " + std::to_string(t) +
+                         "): the obstacle's law must be a sum of harmonics of omega");
+    }
+  }
+  linear.gaps.assign(mean.data(), mean.data() + n_c);
+  ObstacleHarmonics out;
+  out.model = without_obstacle(linear);
+  for (int h = 1; h <= last; ++h) {  // (rows of column-major matrices: copied by entry)
+    const Vector ch = c.row(h - 1).transpose(), sh = sn.row(h - 1).transpose();
+    out.gap_cos.emplace_back(ch.data(), ch.data() + n_c);
+    out.gap_sin.emplace_back(sh.data(), sh.data() + n_c);
+  }
+  return out;
 }
 
 long Model::n_dofs() const { return data_->problem->n_dofs(); }

@@ -127,6 +127,8 @@ struct ModelOptions {
   bool damped() const { return rayleigh_mass != 0 || rayleigh_stiffness != 0 || damping.rows != 0; }
 };
 
+struct ObstacleHarmonics;
+
 class Model {
  public:
   /// Validates everything (throws InputError naming the faulty argument) and
@@ -159,13 +161,31 @@ class Model {
   /// exact flow needs fixed normals; exact for a plane). Throws InputError
   /// if the model has no obstacle, or one that moves.
   std::shared_ptr<const Model> with_obstacle_linearised() const;
+  /// True if the option `obstacle` moves by its own law.
+  bool obstacle_moves() const;
+  /// The same for a forced orbit at the excitation frequency omega with an
+  /// obstacle that moves: the normals at t = 0, the model's gaps the mean of
+  /// g_k(t) = phi(x_k, t) / |grad phi(x_k, t)| over the period 2 pi / omega
+  /// and its harmonics k omega (method.md §9's gap harmonics). Throws
+  /// InputError if the model has no obstacle or its gaps are not periodic
+  /// with that period (to 1e-9 of their size, within 63 harmonics).
+  ObstacleHarmonics with_obstacle_harmonics(double omega) const;
 
   struct Data;  ///< api/model_data.hpp: what the time integrator reads
   const Data& data() const { return *data_; }
 
  private:
   explicit Model(std::unique_ptr<Data> data);
+  std::shared_ptr<const Model> without_obstacle(const ContactDescription& linear) const;
   std::unique_ptr<Data> data_;
+};
+
+/// A model whose moving obstacle is linearised for a forced orbit
+/// (Model::with_obstacle_harmonics): gap_cos[k], gap_sin[k] hold harmonic
+/// k + 1 of every contact node's gap, as ForcedOrbitOptions' gap_cos, gap_sin.
+struct ObstacleHarmonics {
+  std::shared_ptr<const Model> model;
+  std::vector<std::vector<double>> gap_cos, gap_sin;
 };
 
 }  // namespace nbm
