@@ -236,15 +236,21 @@ Model::Model(std::unique_ptr<Data> data) : data_(std::move(data)) {}
 Model::~Model() = default;
 
 std::shared_ptr<const Model> Model::with_contacts(const ContactDescription& contact) const {
+  return rebuilt(contact, true);
+}
+
+std::shared_ptr<const Model> Model::rebuilt(const ContactDescription& contact,
+                                            bool keep_obstacle) const {
   auto d = std::make_unique<Data>();
   const Data& mine = *data_;
   d->options = mine.options;
+  if (!keep_obstacle) d->options.obstacle.reset();
   d->fixed = mine.fixed;
   d->M_user = mine.M_user;
   d->K_user = mine.K_user;
   d->damping_user = mine.damping_user;
   d->positions = mine.positions;
-  d->obstacle = mine.obstacle;
+  if (keep_obstacle) d->obstacle = mine.obstacle;
   build_problem(*d, contact);
   return std::shared_ptr<const Model>(new Model(std::move(d)));
 }
@@ -294,22 +300,6 @@ std::vector<double> obstacle_gaps(const RigidObstacle& o, const ObstacleNodes& n
 
 }  // namespace
 
-// A copy of `mine` without the option obstacle, with the contact
-// description `linear` (the same nodes, fixed normals).
-std::shared_ptr<const Model> Model::without_obstacle(const ContactDescription& linear) const {
-  const Data& mine = *data_;
-  auto data = std::make_unique<Data>();
-  data->options = mine.options;
-  data->options.obstacle.reset();
-  data->fixed = mine.fixed;
-  data->M_user = mine.M_user;
-  data->K_user = mine.K_user;
-  data->damping_user = mine.damping_user;
-  data->positions = mine.positions;
-  build_problem(*data, linear);
-  return std::shared_ptr<const Model>(new Model(std::move(data)));
-}
-
 bool Model::obstacle_moves() const { return data_->obstacle && !data_->obstacle->fixed(); }
 
 std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
@@ -325,7 +315,7 @@ std::shared_ptr<const Model> Model::with_obstacle_linearised() const {
   ContactDescription linear;
   linear.dofs = nodes.dofs;
   linear.gaps = obstacle_gaps(o, nodes, 0.0, &linear.normals);
-  return without_obstacle(linear);
+  return rebuilt(linear, false);
 }
 
 ObstacleHarmonics Model::with_obstacle_harmonics(double omega) const {
@@ -381,7 +371,7 @@ ObstacleHarmonics Model::with_obstacle_harmonics(double omega) const {
   }
   linear.gaps.assign(mean.data(), mean.data() + n_c);
   ObstacleHarmonics out;
-  out.model = without_obstacle(linear);
+  out.model = rebuilt(linear, false);
   for (int h = 1; h <= last; ++h) {  // (rows of column-major matrices: copied by entry)
     const Vector ch = c.row(h - 1).transpose(), sh = sn.row(h - 1).transpose();
     out.gap_cos.emplace_back(ch.data(), ch.data() + n_c);

@@ -176,7 +176,9 @@ class Model {
 
  private:
   explicit Model(std::unique_ptr<Data> data);
-  std::shared_ptr<const Model> without_obstacle(const ContactDescription& linear) const;
+  /// A copy with the contact description `contact`, built from the
+  /// matrices as given, with or without the option obstacle.
+  std::shared_ptr<const Model> rebuilt(const ContactDescription& contact, bool keep_obstacle) const;
   std::unique_ptr<Data> data_;
 };
 
