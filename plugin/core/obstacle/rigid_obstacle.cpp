@@ -82,6 +82,7 @@ class Plane final : public RigidObstacle {
   }
   bool flat() const override { return true; }
   bool fixed() const override { return shift_.constant(); }
+  bool is_distance() const override { return true; }
   std::string describe() const override {
     return "plane through " + text(point_) + " with normal " + text(normal_);
   }
@@ -144,6 +145,7 @@ class RoundObstacle final : public RigidObstacle {
     return p;
   }
   bool fixed() const override { return !translation_.moves() && radius_change_.constant(); }
+  bool is_distance() const override { return true; }
   std::string describe() const override {
     return kind_ + " of radius " + std::to_string(R_) + " around " + text(center_) +
            (side_ == Side::kOutside ? ", body outside" : ", body inside");
@@ -224,6 +226,7 @@ class RotatingObstacle final : public RigidObstacle {
     return p;
   }
   bool fixed() const override { return angle_.constant() && shape_->fixed(); }
+  bool is_distance() const override { return shape_->is_distance(); }  // turned rigidly
   std::string describe() const override {
     Vector pivot = pivot_.head(dim());
     return shape_->describe() + ", turning about " + text(pivot);

@@ -56,6 +56,9 @@ class RigidObstacle {
   virtual bool flat() const { return false; }
   /// True if the obstacle does not move (d phi / dt = 0 everywhere).
   virtual bool fixed() const = 0;
+  /// True if phi is a signed distance, |phi(x) - phi(y)| <= |x - y|: a point
+  /// at phi > 0 cannot reach the obstacle by moving less than phi.
+  virtual bool is_distance() const { return false; }
   /// A one-line description for messages ("circle of radius 1.25 ...").
   virtual std::string describe() const = 0;
 

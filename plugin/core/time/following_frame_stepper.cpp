@@ -455,13 +455,30 @@ void FollowingFrameStepper::boundary_rates(double t) {
   boundary_relation(a_, h_a);
 }
 
-int FollowingFrameStepper::count_crossings(double t) const {
+int FollowingFrameStepper::count_crossings(double t) {
   int crossings = 0;
   const double tolerance = options_.frame_tolerance * size_;
+  // A fixed signed distance bounds itself: a node that was at distance
+  // phi_w from the obstacle at x_w cannot be inside it while it is nearer
+  // than phi_w to x_w, whatever happened since (restarts included), so
+  // phi is evaluated only when a node has moved that far (method.md §10).
+  const bool bounded = obstacle_->fixed() && obstacle_->is_distance();
+  if (watch_phi_.size() != watch_X_.rows()) {
+    watch_phi_ = Vector::Constant(watch_X_.rows(), -1.0);  // none evaluated yet
+    watch_at_ = watch_X_;
+  }
   for (Index w = 0; w < watch_X_.rows(); ++w) {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
-    for (int j = 0; j < d_; ++j) x(j) = watch_X_(w, j) + u_(watch_dofs_[w * d_ + j]);
-    if (obstacle_->at(x.data(), t).phi < -tolerance) ++crossings;
+    double moved2 = 0;
+    for (int j = 0; j < d_; ++j) {
+      x(j) = watch_X_(w, j) + u_(watch_dofs_[w * d_ + j]);
+      moved2 += (x(j) - watch_at_(w, j)) * (x(j) - watch_at_(w, j));
+    }
+    if (bounded && watch_phi_(w) > 0 && moved2 < watch_phi_(w) * watch_phi_(w)) continue;
+    const double phi = obstacle_->at(x.data(), t).phi;
+    watch_phi_(w) = phi;
+    for (int j = 0; j < d_; ++j) watch_at_(w, j) = x(j);
+    if (phi < -tolerance) ++crossings;
   }
   return crossings;
 }

@@ -103,7 +103,7 @@ class FollowingFrameStepper final : public Stepper {
   /// u <- u + (p - positions_of(u)) on the contact nodes.
   void place_nodes(const Matrix& p, Vector& u) const;
   /// Nodes outside the contact set inside the obstacle at time t (above).
-  int count_crossings(double t) const;
+  int count_crossings(double t);
   /// -lambda . g' at time t, g' = (d phi / dt) / |grad phi| at each node.
   double obstacle_power(const Vector& lambda, const Vector& u, double t) const;
   /// v_N and a_N from the nodal boundary relation differentiated in time
@@ -131,6 +131,11 @@ class FollowingFrameStepper final : public Stepper {
   // The other nodes: internal dofs (d per node, by component) and positions.
   std::vector<Index> watch_dofs_;
   Matrix watch_X_;
+  // Where each watched node was when phi was last evaluated, and that phi
+  // (count_crossings: a fixed signed distance is evaluated only for nodes
+  // that have moved farther than it since).
+  Matrix watch_at_;
+  Vector watch_phi_;
   double size_ = 1;
   SparseMatrix M_;                // the massless mass M'
   std::unique_ptr<CholeskyInverse> S_;
