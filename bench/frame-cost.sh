@@ -5,7 +5,10 @@
 # following frame against the frame fixed at the reference configuration and
 # against the plain contact-free step, all in one process per size. Writes
 # bench/RESULTS-frame.md.
-#   bash bench/frame-cost.sh            # about a minute
+# Each size runs five times (these millisecond steps move by tens of percent
+# between runs of one binary): the page gives the range and median of the
+# ratios, then the first run's output in full.
+#   bash bench/frame-cost.sh            # about five minutes
 set -eu
 repo=$(cd "$(dirname "$0")/.." && pwd)
 # Written outside the repository first, so that the page being made does not
@@ -25,6 +28,25 @@ export OPENBLAS_NUM_THREADS=1
   echo "plate of NX x NY cells whose bottom edge (NX + 1 contact nodes) slides in a circular bowl;"
   echo "CPU times of the thread, mean over STEPS steps. Targets: a step with a changing frame within"
   echo "1.5 steps with a fixed frame for n_c <= 500, setup within 1.3 of today's (the fixed frame's)."
+  echo
+  echo "Ratios following / fixed over five runs of each size (min, median, max):"
+  echo
+  echo "| run | contact nodes | step | setup |"
+  echo "|---|---|---|---|"
+  for args in "100 10 100" "200 20 60" "400 40 40" "500 25 40"; do
+    steps="" setups=""
+    for _ in 1 2 3 4 5; do
+      # shellcheck disable=SC2086
+      line=$("$tool" $args | grep '^following / fixed')
+      steps="$steps $(echo "$line" | awk '{print $5}')"
+      setups="$setups $(echo "$line" | awk '{print $9}')"
+    done
+    range() { printf '%s\n' $1 | sort -g | awk '{v[NR] = $1} END {printf "%s, %s, %s", v[1], v[3], v[5]}'; }
+    nc=$(( ${args%% *} + 1 ))
+    echo "| \`nbm_frame_cost $args\` | $nc | $(range "$steps") | $(range "$setups") |"
+  done
+  echo
+  echo "The first run of each size:"
   echo
   tool_blocks "$tool" "100 10 100" "200 20 60" "400 40 40" "500 25 40"
 } > "$tmp"
