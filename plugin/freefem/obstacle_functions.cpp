@@ -11,9 +11,10 @@
 //
 //   NBMObstacle cam("circle", c, radius = R, pivot = p0,
 //                   rotation = [0, Om, 0]);                        // turns about p0
-//   real tphi;                                                     // the script's phi:
-//   NBMObstacle ramp("distance", [0, 0], distance = y - 0.2 * x^2);        // fixed
-//   NBMObstacle wave("distance", [0, 0], distance = y - a * sin(x - tphi),
+//   real[int] o = [0, 0];                                          // the script's phi:
+//   NBMObstacle ramp("distance", o, distance = y - 0.2 * x^2);     // fixed
+//   real tphi;
+//   NBMObstacle wave("distance", o, distance = y - a * sin(x - tphi),
 //                    time = tphi);                                  // moving
 //
 // A motion is a time law [offset, rate, accel, omega1, cos1, sin1, ...]:
@@ -95,6 +96,9 @@ class ObstacleConstruct : public E_F0mps {
     } else if (time) {
       fail("NBMObstacle: time: given without distance = (it is the variable a distance "
            "expression reads the time from)");
+    } else if (nargs[11]) {
+      fail("NBMObstacle: fdStep: given without distance = (the step of the differences of a "
+           "distance expression)");
     }
     // Checked now, where the script declares it, not at the NBM call.
     guarded("NBMObstacle", [&] { nbm::check_obstacle(*d); });

@@ -202,5 +202,6 @@ nbm_bad_follow_case(follow-distance-nan [=[NBMObstacle: obstacle distance: phi a
 nbm_bad_follow_case(follow-distance-radius [=[NBMObstacle: obstacle distance: translation, radius or radiusChange given with kind "distance"]=])
 nbm_bad_follow_case(follow-distance-other-kind [=[NBMObstacle: obstacle distance: a function given with kind "circle"]=])
 nbm_bad_follow_case(follow-time-without-distance [=[NBMObstacle: time: given without distance =]=])
+nbm_bad_follow_case(follow-fd-step-no-distance [=[NBMObstacle: fdStep: given without distance =]=])
 nbm_bad_follow_case(follow-fd-step [=[NBMObstacle: obstacle fdStep: 0.0+, expected 0 < fdStep < 0.1]=])
 nbm_bad_follow_case(follow-distance-size [=[nbmObstacleDistance: x: 3 coordinates, expected 2 \(the obstacle's dimension\)]=])
