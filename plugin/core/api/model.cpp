@@ -94,18 +94,30 @@ std::unique_ptr<RigidObstacle> shape_of(const ObstacleDescription& d) {
   const TimeLaw grow = time_law(d.radius_change, "obstacle radius change");
   const bool grows = !grow.constant() || grow.offset != 0;
   if (d.kind == "distance") {
-    if (grows || !move.constant() || move.offset != 0 || d.radius != 0)
-      throw InputError("obstacle distance: translation, radius or radiusChange given with kind "
-                       "\"distance\", whose expression gives the motion (time =)");
+    if (grows || !move.constant() || move.offset != 0 || d.radius != 0 || !d.axis.empty() ||
+        !d.direction.empty() || side == Side::kInside)
+      throw InputError("obstacle distance: translation, radius, radiusChange, axis, direction or "
+                       "side given with kind \"distance\", whose expression gives the shape and "
+                       "the motion (time =)");
     return distance_obstacle(d);
   }
   if (d.distance)
     throw InputError("obstacle distance: a function given with kind \"" + d.kind +
                      "\" (it is used by kind \"distance\" only)");
   if (d.kind == "plane") {
+    // What a plane has no use for is refused rather than ignored.
     if (grows) throw InputError("obstacle radius change: given for a plane, which has no radius");
+    if (d.radius != 0) throw InputError("obstacle radius: given for a plane, which has none");
+    if (side == Side::kInside)
+      throw InputError("obstacle side: \"inside\" given for a plane, whose body side is where "
+                       "its normal (axis) points");
+    if (!d.direction.empty())
+      throw InputError("obstacle direction: given for a plane, which moves along its normal");
     return make_plane(vector_of(d.point), vector_of(d.axis), move);
   }
+  if ((d.kind == "circle" || d.kind == "sphere") && !d.axis.empty())
+    throw InputError("obstacle axis: given for a " + d.kind + ", which has none (a cylinder's "
+                     "axis, a plane's normal)");
   if (d.kind == "circle" || d.kind == "sphere") {
     const std::size_t dim = d.kind == "circle" ? 2 : 3;
     if (d.point.size() != dim)
