@@ -22,12 +22,14 @@
 // the active set the solver accepted w_i >= -8 n eps (|q| + |A| |z|). Both are
 // relative to w_scale >= |A z|_inf >= lambda_min |z|_2 / sqrt(n), and
 // |A| <= lambda_max, hence a bound c' n^2.5 eps cond2(A). No forward error
-// (which would bring cond^2) enters. cond2 is computed from the eigenvalues of
-// A; when lambda_min <= 0 in floating point the residual is not checked.
+// (which would bring cond^2) enters. cond2 is computed from the singular values of
+// A; when A is not positive definite in floating point (its Cholesky
+// factorization fails) the residual is not checked.
 //
 // Corpus: lcp-overflow (A = 8.7e-26 I, q = (-1e300, 0)) made solve() return
 // z = inf as a "solution"; it now throws nbm::NumericalError (lcp.cpp).
-#include <Eigen/Eigenvalues>
+#include <Eigen/Cholesky>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -112,12 +114,20 @@ Matrix random_spd(FuzzedDataProvider& fdp, Index n) {
   return A;
 }
 
+// cond2 of a symmetric A, infinite unless A is positive definite in floating
+// point (its Cholesky factorization succeeds): the ratio of its extreme
+// singular values, its eigenvalues then. Not by SelfAdjointEigenSolver: its
+// tridiagonalization calls BLAS dsymv (EIGEN_USE_BLAS), and OpenBLAS 0.3.21's
+// dsymv_L kernel reads past the end of the small matrix it is given, which
+// ASan's allocator once placed at the end of a mapped region (a SEGV in the
+// CI run; corpus/fuzz_lcp/openblas-dsymv-overread). JacobiSVD uses plane
+// rotations only.
 double cond2(const Matrix& A) {
-  const Eigen::SelfAdjointEigenSolver<Matrix> es(A, Eigen::EigenvaluesOnly);
-  if (es.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-  const double lmin = es.eigenvalues().minCoeff(), lmax = es.eigenvalues().maxCoeff();
-  if (!(lmin > 0)) return std::numeric_limits<double>::infinity();
-  return lmax / lmin;
+  if (Eigen::LLT<Matrix>(A).info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+  const Eigen::JacobiSVD<Matrix> svd(A);
+  const double smin = svd.singularValues().minCoeff(), smax = svd.singularValues().maxCoeff();
+  if (!(smin > 0)) return std::numeric_limits<double>::infinity();
+  return smax / smin;
 }
 
 }  // namespace
