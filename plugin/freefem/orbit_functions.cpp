@@ -258,32 +258,27 @@ class ForcedCall : public E_F0mps {
                       bool one_orbit = false) const {
     ForcedInputs in;
     in.h = GetAny<ModelHandle*>((*handle)(s));
-    const bool moving = one_orbit && model_of(in.h, fn).obstacle_moves();
-    if (moving) {
+    const double w = GetAny<double>((*omega)(s));
+    const nbm::Model& held = model_of(in.h, fn);
+    nbm::ObstacleHarmonics moving;
+    if (one_orbit && held.obstacle_moves()) {
       if (nargs[gaps] || nargs[gaps + 1])
         fail(std::string(fn) + ": gapCos, gapSin: given with an obstacle= that moves by its own "
              "law, whose motion gives the gap harmonics");
-      const double w = GetAny<double>((*omega)(s));
-      nbm::ObstacleHarmonics oh =
-          guarded(fn, [&] { return model_of(in.h, fn).with_obstacle_harmonics(w); });
+      moving = guarded(fn, [&] { return held.with_obstacle_harmonics(w); });
       in.h->forget_orbits();
       delete in.h->linearised;
-      in.h->linearised = new std::shared_ptr<const nbm::Model>(std::move(oh.model));
-      in.model = in.h->linearised->get();
-      in.options.gap_cos = std::move(oh.gap_cos);
-      in.options.gap_sin = std::move(oh.gap_sin);
+      in.h->linearised = new std::shared_ptr<const nbm::Model>(moving.model);
+      in.model = moving.model.get();
     } else {
       in.model = &periodic_model_of(in.h, fn);
     }
     in.U = GetAny<KN<double>*>((*u)(s));
     in.V = GetAny<KN<double>*>((*v)(s));
     if (in.U == in.V) fail(std::string(fn) + ": u and v must be different arrays");
-    {
-      nbm::ForcedOrbitOptions o = forced_options(*in.model, nargs, s, GetAny<double>((*omega)(s)), fn);
-      o.gap_cos = std::move(in.options.gap_cos);
-      o.gap_sin = std::move(in.options.gap_sin);
-      in.options = std::move(o);
-    }
+    in.options = forced_options(*in.model, nargs, s, w, fn);
+    in.options.gap_cos = std::move(moving.gap_cos);
+    in.options.gap_sin = std::move(moving.gap_sin);
     in.u = vector_of<double>(in.U, fn, "u");
     in.v = vector_of<double>(in.V, fn, "v");
     in.F0 = vector_of<double>(GetAny<KN<double>*>((*F0)(s)), fn, "F0");

@@ -310,6 +310,45 @@ std::vector<double> obstacle_gaps(const RigidObstacle& o, const ObstacleNodes& n
   return gaps;
 }
 
+// Signals sampled at N equidistant times of a period (a row per sample, a
+// column per signal): their mean and harmonics h = 1..H by the discrete
+// Fourier sums (exact for h < N / 2), H the highest harmonic above the
+// round-off of the sums (1e-13 of the samples' size); rows h - 1 of cos, sin.
+struct FourierSums {
+  Vector mean;
+  Matrix cos, sin;
+  /// Signal k's series at the phase a = omega t.
+  double at(Index k, double a) const {
+    double value = mean(k);
+    for (Index h = 1; h <= cos.rows(); ++h)
+      value += cos(h - 1, k) * std::cos(h * a) + sin(h - 1, k) * std::sin(h * a);
+    return value;
+  }
+};
+
+FourierSums fourier_sums(const Matrix& g) {
+  const Index N = g.rows(), H = N / 2 - 1;
+  FourierSums f;
+  f.mean = g.colwise().mean().transpose();
+  Matrix c = Matrix::Zero(H, g.cols()), s = Matrix::Zero(H, g.cols());
+  const double pi = std::acos(-1.0);
+  for (Index h = 1; h <= H; ++h)
+    for (Index j = 0; j < N; ++j) {
+      const double a = 2 * pi * h * j / N;
+      c.row(h - 1) += (2.0 / N) * std::cos(a) * g.row(j);
+      s.row(h - 1) += (2.0 / N) * std::sin(a) * g.row(j);
+    }
+  const double scale = std::max(g.cwiseAbs().maxCoeff(), 1e-300);
+  Index last = 0;
+  for (Index h = 1; h <= H; ++h)
+    if (c.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale ||
+        s.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale)
+      last = h;
+  f.cos = c.topRows(last);
+  f.sin = s.topRows(last);
+  return f;
+}
+
 }  // namespace
 
 bool Model::obstacle_moves() const { return data_->obstacle && !data_->obstacle->fixed(); }
@@ -340,11 +379,10 @@ ObstacleHarmonics Model::with_obstacle_harmonics(double omega) const {
   ContactDescription linear;
   linear.dofs = nodes.dofs;
   obstacle_gaps(o, nodes, 0.0, &linear.normals);  // the normals at t = 0
-  // The gaps sampled over one period, their mean and harmonics k omega by
-  // the discrete Fourier sums of N samples (exact for k < N / 2), checked
-  // between the samples: a law that is not periodic with 2 pi / omega, or
-  // has harmonics beyond N / 2, does not pass.
-  const int N = 128, H = N / 2 - 1;
+  // The gaps sampled over one period, their Fourier sums, and the series
+  // checked between the samples: a law that is not periodic with 2 pi / omega,
+  // or has harmonics beyond N / 2, does not pass.
+  const int N = 128;
   const double T = 2 * std::acos(-1.0) / omega;
   const Index n_c = static_cast<Index>(nodes.x.size());
   Matrix g(N, n_c);
@@ -352,40 +390,26 @@ ObstacleHarmonics Model::with_obstacle_harmonics(double omega) const {
     const std::vector<double> gs = obstacle_gaps(o, nodes, s * T / N, nullptr);
     for (Index k = 0; k < n_c; ++k) g(s, k) = gs[k];
   }
-  const Vector mean = g.colwise().mean().transpose();
-  Matrix c = Matrix::Zero(H, n_c), sn = Matrix::Zero(H, n_c);
-  for (int h = 1; h <= H; ++h)
-    for (int s = 0; s < N; ++s) {
-      const double a = omega * h * s * T / N;
-      c.row(h - 1) += (2.0 / N) * std::cos(a) * g.row(s);
-      sn.row(h - 1) += (2.0 / N) * std::sin(a) * g.row(s);
-    }
+  const FourierSums f = fourier_sums(g);
   const double scale = std::max(g.cwiseAbs().maxCoeff(), 1e-300);
-  int last = 0;  // the highest harmonic that is not round-off
-  for (int h = 1; h <= H; ++h)
-    if (c.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale ||
-        sn.row(h - 1).cwiseAbs().maxCoeff() > 1e-13 * scale)
-      last = h;
   for (int s = 0; s < N; ++s) {
     const double t = (s + 0.5) * T / N;
     const std::vector<double> gs = obstacle_gaps(o, nodes, t, nullptr);
     for (Index k = 0; k < n_c; ++k) {
-      double series = mean(k);
-      for (int h = 1; h <= last; ++h)
-        series += c(h - 1, k) * std::cos(h * omega * t) + sn(h - 1, k) * std::sin(h * omega * t);
-      if (!(std::abs(series - gs[k]) <= 1e-9 * scale))
+      const double off = std::abs(f.at(k, omega * t) - gs[k]);
+      if (!(off <= 1e-9 * scale))
         throw InputError("obstacle: " + o.describe() + ": the gap of contact node " +
                          std::to_string(k) + " is not periodic with the excitation's period 2 pi / "
-                         "omega = " + std::to_string(T) + " (off by " +
-                         std::to_string(std::abs(series - gs[k])) + " at t = " + std::to_string(t) +
+                         "omega = " + std::to_string(T) + " (off by " + std::to_string(off) +
+                         " at t = " + std::to_string(t) +
                          "): the obstacle's law must be a sum of harmonics of omega");
     }
   }
-  linear.gaps.assign(mean.data(), mean.data() + n_c);
+  linear.gaps.assign(f.mean.data(), f.mean.data() + n_c);
   ObstacleHarmonics out;
   out.model = rebuilt(linear, false);
-  for (int h = 1; h <= last; ++h) {  // (rows of column-major matrices: copied by entry)
-    const Vector ch = c.row(h - 1).transpose(), sh = sn.row(h - 1).transpose();
+  for (Index h = 0; h < f.cos.rows(); ++h) {  // (rows of column-major matrices: copied by entry)
+    const Vector ch = f.cos.row(h).transpose(), sh = f.sin.row(h).transpose();
     out.gap_cos.emplace_back(ch.data(), ch.data() + n_c);
     out.gap_sin.emplace_back(sh.data(), sh.data() + n_c);
   }

@@ -99,6 +99,8 @@ FollowingFrameStepper::FollowingFrameStepper(const ContactProblem& problem,
         watch_X_(static_cast<Index>(w), j) = positions(nodes[w][j], j);
       }
   }
+  watch_at_ = watch_X_;
+  watch_phi_ = Vector::Constant(watch_X_.rows(), -1.0);  // none evaluated yet
   size_ = (positions.colwise().maxCoeff() - positions.colwise().minCoeff()).norm();
   if (!(size_ > 0)) size_ = 1;
 
@@ -463,10 +465,6 @@ int FollowingFrameStepper::count_crossings(double t) {
   // than phi_w to x_w, whatever happened since (restarts included), so
   // phi is evaluated only when a node has moved that far (method.md §10).
   const bool bounded = obstacle_->fixed() && obstacle_->is_distance();
-  if (watch_phi_.size() != watch_X_.rows()) {
-    watch_phi_ = Vector::Constant(watch_X_.rows(), -1.0);  // none evaluated yet
-    watch_at_ = watch_X_;
-  }
   for (Index w = 0; w < watch_X_.rows(); ++w) {
     Eigen::Vector3d x = Eigen::Vector3d::Zero();
     double moved2 = 0;
