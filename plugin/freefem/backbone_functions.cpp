@@ -8,6 +8,9 @@
 //                       probe = i,         // the dof of probe_amplitude (default: the
 //                                          // dof of largest amplitude at grazing)
 //                       table = P,         // real[int,int] n x 12, the CSV's numbers
+//                       branch = "arclength" | "frequency", with the latter
+//                       frequencyStep = 0.002, energyJump = 0.4, skips = 3,
+//                       to = omegaMax       // (user_backbone.hpp, BackboneOptions)
 //                       modes = 0);        // > 0: on a reduced basis (as nbmPeriodicOrbit)
 //
 // The backbone of linear mode `mode` (0: the lowest of the system with every
@@ -27,15 +30,17 @@
 #include <fstream>
 #include <iostream>
 
-#include "binding.hpp"
+// user_backbone.hpp first: binding.hpp's choice_of finds nbm::name(Branch)
+// where it is defined.
 #include "periodic/user_backbone.hpp"
+#include "binding.hpp"
 
 namespace nbm_binding {
 namespace {
 
 class Backbone : public E_F0mps {
  public:
-  static const int n_name_param = 6;
+  static const int n_name_param = 11;
   static basicAC_F0::name_and_type name_param[];
   Expression nargs[n_name_param];
   Expression handle, F, mode, points, step, file;
@@ -58,6 +63,19 @@ class Backbone : public E_F0mps {
     KNM<double>* table = nargs[3] ? GetAny<KNM<double>*>((*nargs[3])(s)) : nullptr;
     if (nargs[4]) o.probe = GetAny<long>((*nargs[4])(s));
     if (nargs[5]) o.modes = static_cast<int>(GetAny<long>((*nargs[5])(s)));
+    using Branch = nbm::BackboneOptions::Branch;
+    if (nargs[6])
+      o.branch = choice_of(*GetAny<string*>((*nargs[6])(s)), fn, "branch",
+                           {Branch::arclength, Branch::frequency});
+    const char* frequency_only[] = {"frequencyStep", "energyJump", "skips", "to"};
+    for (int k = 7; k < 11; ++k)
+      if (nargs[k] && o.branch != Branch::frequency)
+        fail(std::string(fn) + ": " + frequency_only[k - 7] +
+             ": only with branch = \"frequency\" (the arclength branch has no use for it)");
+    if (nargs[7]) o.frequency_step = GetAny<double>((*nargs[7])(s));
+    if (nargs[8]) o.energy_jump = GetAny<double>((*nargs[8])(s));
+    if (nargs[9]) o.max_skips = static_cast<int>(GetAny<long>((*nargs[9])(s)));
+    if (nargs[10]) o.max_omega = GetAny<double>((*nargs[10])(s));
     const std::vector<double> FF = vector_of<double>(GetAny<KN<double>*>((*F)(s)), fn, "F");
     const long j = GetAny<long>((*mode)(s));
     const string* name = GetAny<string*>((*file)(s));
@@ -103,6 +121,11 @@ basicAC_F0::name_and_type Backbone::name_param[] = {
     {"table", &typeid(KNM<double>*)},
     {"probe", &typeid(long)},
     {"modes", &typeid(long)},
+    {"branch", &typeid(string*)},
+    {"frequencyStep", &typeid(double)},
+    {"energyJump", &typeid(double)},
+    {"skips", &typeid(long)},
+    {"to", &typeid(double)},
 };
 
 class BackboneOp : public OneOperator {

@@ -154,6 +154,77 @@ TEST(Backbone, IsHomogeneousInTheGap) {
   }
 }
 
+// The frequency branch is homogeneous in the gap as the arclength one is:
+// doubling every gap doubles every orbit at the same frequencies, tongue
+// events included (the chain's mode 0 meets some: their ratios name the
+// open modes near integer multiples of the skipped frequency).
+TEST(Backbone, TheFrequencyBranchIsHomogeneousInTheGap) {
+  Chain one, two;
+  two.gaps *= 2;
+  nbm::BackboneOptions o;
+  o.points = 30;
+  o.branch = nbm::BackboneOptions::Branch::frequency;
+  o.frequency_step = 0.02;
+  const nbm::Backbone b1 = nbm::backbone(one.field(), 0, o);
+  const nbm::Backbone b2 = nbm::backbone(two.field(), 0, o);
+  ASSERT_GT(b1.points.size(), 3u) << b1.stop_reason;
+  ASSERT_EQ(b2.points.size(), b1.points.size()) << b2.stop_reason;
+  EXPECT_EQ(b2.stop_reason.substr(0, 10), b1.stop_reason.substr(0, 10));
+  for (std::size_t k = 0; k < b1.points.size(); ++k) {
+    const auto &p = b1.points[k], &q = b2.points[k];
+    EXPECT_NEAR(q.orbit.period, p.orbit.period, 1e-8 * p.orbit.period) << "point " << k;
+    EXPECT_NEAR(q.energy, 4 * p.energy, 1e-7 * q.energy) << "point " << k;
+    EXPECT_EQ(q.events, p.events) << "point " << k;
+    if (k >= 1) {
+      EXPECT_GT(p.orbit.contact_time, 0) << "point " << k;
+    }
+  }
+  std::printf("chain, frequency branch: %zu orbits to %.4f x the linear frequency; %s\n",
+              b1.points.size(), b1.points[0].orbit.period / b1.points.back().orbit.period,
+              b1.stop_reason.c_str());
+  for (const auto& p : b1.points)
+    if (p.events.find("tongue") != std::string::npos) std::printf("  %s\n", p.events.c_str());
+}
+
+// The clamped bar with its wall (the case of issue 26 whose arclength
+// backbone stops at grazing or climbs a tongue at once): the frequency
+// branch leaves grazing and holds, with the massless boundary, every orbit
+// periodic and in contact. Printed for both mass treatments (method.md §6,
+// "The primary branch", quotes these lines).
+TEST(Backbone, TheFrequencyBranchLeavesGrazingOnTheBar) {
+  for (bool massless : {true, false}) {
+    nbm_test::GapBar bar;
+    bar.N = 40;
+    bar.g = 0.05;
+    bar.massless = massless;
+    nbm::BackboneOptions o;
+    o.points = 120;
+    o.branch = nbm::BackboneOptions::Branch::frequency;
+    o.frequency_step = 5e-4;
+    const nbm::Backbone b = nbm::backbone(bar.field(), 0, o);
+    const auto& last = b.points.back();
+    int tongues = 0;
+    for (const auto& p : b.points) tongues += p.events.find("tongue") != std::string::npos;
+    std::printf("bar N = 40, %s: %zu orbits to %.4f x the linear frequency at %.2f x the grazing "
+                "energy, %d with tongue events; %s\n",
+                massless ? "massless" : "consistent", b.points.size(),
+                b.points[0].orbit.period / last.orbit.period, last.energy / b.points[0].energy,
+                tongues, b.stop_reason.c_str());
+    // The continuum family (benchmarks.md §C) at that frequency ratio:
+    // omega / omega_1 = 4 / (4 - tau), E / E_g = 8 / (pi^2 (1 - tau)^2).
+    const double ratio = b.points[0].orbit.period / last.orbit.period, tau = 4 * (1 - 1 / ratio);
+    std::printf("  the continuum family at that ratio: %.2f x the grazing energy\n",
+                8 / (M_PI * M_PI * (1 - tau) * (1 - tau)));
+    if (!massless) continue;
+    ASSERT_EQ(b.points.size(), 120u) << b.stop_reason;
+    EXPECT_GT(b.points[0].orbit.period / last.orbit.period, 1.03);
+    for (std::size_t k = 1; k < b.points.size(); ++k) {
+      EXPECT_LE(b.points[k].orbit.periodicity_residual, 1e-9) << k;
+      EXPECT_GT(b.points[k].orbit.contact_time, 0) << k;
+    }
+  }
+}
+
 // The chain's first backbone turns: events flagged where the data of the
 // orbits say (frequency or energy turning, switches or stability changing),
 // and it ends, through a 6:1 internal resonance, on an orbit without contact:
@@ -286,6 +357,47 @@ INSTANTIATE_TEST_SUITE_P(ClosedForm, BilinearBackbone,
                            return case_name(info.param);
                          });
 
+// The frequency branch (BackboneOptions::Branch::frequency) on the same
+// oscillators: after the first orbit past grazing, orbits at frequencies
+// raised by exactly frequency_step each (no tongue on two dofs: no skip),
+// each on the closed-form period-amplitude curve, up to `max_omega`.
+TEST_P(BilinearBackbone, TheFrequencyBranchFollowsTheClosedFormPeriod) {
+  const auto [kc, P, half, mB] = GetParam();
+  Bilinear exact;
+  exact.kc = kc, exact.P = P, exact.mB = mB;
+  Eigen::Matrix2d M, K;
+  M << exact.m, 0, 0, mB;
+  K << exact.k + kc, -kc, -kc, kc;
+  const nbm::ReducedField field(M, K, Eigen::Vector2d(P, 0), {1},
+                                Vector::Constant(1, exact.g));
+  const double w0 = 2 * exact.w1() * exact.w2() / (exact.w1() + exact.w2());
+  nbm::BackboneOptions o;
+  o.points = 400;
+  o.step = 0.2;
+  o.half_period = half;
+  o.branch = nbm::BackboneOptions::Branch::frequency;
+  o.frequency_step = 0.01;
+  o.max_omega = exact.w1() + 0.5 * (w0 - exact.w1());
+  const nbm::Backbone b = nbm::backbone(field, 0, o);
+  EXPECT_NE(b.stop_reason.find("frequency: the next orbit's omega"), std::string::npos)
+      << b.stop_reason;
+  ASSERT_GT(b.points.size(), 5u);
+  for (std::size_t i = 1; i < b.points.size(); ++i) {
+    const auto& p = b.points[i];
+    EXPECT_NEAR(p.orbit.period, exact.period(p.amplitude), 1e-10 * p.orbit.period) << i;
+    EXPECT_NEAR(p.energy, 0.5 * exact.k * p.amplitude * p.amplitude, 1e-10 * p.energy) << i;
+    EXPECT_EQ(p.events.find("tongue"), std::string::npos) << i;
+    if (i >= 2) {
+      const double ratio = b.points[i - 1].orbit.period / p.orbit.period;
+      EXPECT_NEAR(ratio, 1 + o.frequency_step, 1e-12) << i;
+      EXPECT_GT(p.amplitude, b.points[i - 1].amplitude) << i;
+    }
+  }
+  const double w_last = 2 * M_PI / b.points.back().orbit.period;
+  EXPECT_LE(w_last, o.max_omega);
+  EXPECT_GT(w_last * (1 + o.frequency_step), o.max_omega) << b.stop_reason;
+}
+
 TEST(Backbone, TheBilinearLimitAtGapZero) {
   // The closed form of the test itself: at a vanishing gap, 2 w1 w2 / (w1 + w2).
   Bilinear b;
@@ -347,6 +459,21 @@ TEST(Backbone, RejectsBadInput) {
   with([](nbm::BackboneOptions& b) { b.step = NAN; }, "step: expected a finite step > 0");
   with([](nbm::BackboneOptions& b) { b.max_energy = -1; }, "energy: expected a limit > 0");
   with([](nbm::BackboneOptions& b) { b.max_iterations = 0; }, "iterations: expected >= 1");
+  using Branch = nbm::BackboneOptions::Branch;
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.frequency_step = 0; },
+       "frequencyStep: expected a finite relative step > 0, got 0");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.frequency_step = INFINITY; },
+       "frequencyStep: expected a finite relative step > 0");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.energy_jump = -0.1; },
+       "energyJump: expected a finite relative bound > 0, got -0.1");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.energy_jump = NAN; },
+       "energyJump: expected a finite relative bound > 0");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.max_skips = -1; },
+       "skips: expected >= 0, got -1");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.max_omega = 0; },
+       "to: expected a frequency > 0, got 0");
+  with([](nbm::BackboneOptions& b) { b.branch = Branch::frequency, b.max_omega = NAN; },
+       "to: expected a frequency > 0");
 }
 
 // The fixed-gap bar of benchmarks.md §C (paper NBM) with N elements and no

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -56,7 +57,7 @@ BackbonePoint point_of(const ReducedField& field, const GrazingOrbit& g, Periodi
   return p;
 }
 
-void add_event(std::string& events, const char* name) {
+void add_event(std::string& events, const std::string& name) {
   if (!events.empty()) events += ' ';
   events += name;
 }
@@ -83,13 +84,16 @@ void mark_events(std::vector<BackbonePoint>& points) {
 }
 
 // The first orbit past grazing when the first step along the linear
-// family fails, with mass on the contact nodes (method.md §6): the family
+// family fails (method.md §6). With mass on the contact nodes the family
 // leaves grazing with a vertical tangent, T - T_g ~ sqrt(A - A_g), so the
 // corrector on the hyperplane across the linear direction meets that square
-// root (on the clamped plate's bending mode it fails down to step/64). The
-// tangent is the period's direction: an orbit at the fixed period
-// T_g (1 - eps) (the obstacle stiffens the system), from the linear orbit at
-// 1.1 a, for eps = 3e-3, 1e-2, 1e-3 in turn; the first with contact, or none.
+// root (on the clamped plate's bending mode it fails down to step/64). With
+// the massless boundary the first step fails where many contact nodes graze
+// within a small amplitude range (the 3D blade's flat tip: each retried
+// step still crosses several grazings). Either way an orbit at the fixed
+// period T_g (1 - eps) (the obstacle stiffens the system), from the linear
+// orbit at 1.1 a, for eps = 3e-3, 1e-2, 1e-3 in turn; the first with
+// contact, or none.
 std::optional<PeriodicOrbit> vertical_start(const ReducedField& field, const GrazingOrbit& g,
                                             ShootingOptions s) {
   s.kind = ShootingOptions::Amplitude::period;
@@ -140,6 +144,94 @@ class BackboneFamily : public OrbitFamily {
   const GrazingOrbit& g_;
   double max_energy_;
 };
+
+// The "tongue[j:r]" event of a frequency skipped by the frequency branch:
+// the open system's mode j whose frequency is nearest (relative to it) an
+// integer multiple k >= 2 of omega, and r = omega_j / omega. A guide to
+// the internal resonance there, not a proof of it (the nonsmooth orbit's
+// harmonics meet the modes of the regions it visits, which the open ones
+// only approximate).
+std::string tongue_event(const Vector& omega_open, double omega) {
+  Index best = -1;
+  double distance = std::numeric_limits<double>::infinity();
+  for (Index j = 0; j < omega_open.size(); ++j) {
+    const double r = omega_open(j) / omega, k = std::max(2.0, std::round(r));
+    if (std::abs(r - k) / k < distance) distance = std::abs(r - k) / k, best = j;
+  }
+  if (best < 0) return "tongue";
+  char ratio[32];
+  std::snprintf(ratio, sizeof ratio, "%.3f", omega_open(best) / omega);
+  return "tongue[" + std::to_string(best) + ":" + ratio + "]";
+}
+
+// The frequency branch (BackboneOptions::Branch::frequency, method.md §6
+// "The primary branch"): from the last orbit, orbits at fixed periods at
+// frequencies raised by frequency_step per step; tongue orbits (an energy
+// jump beyond energy_jump) and failed correctors skipped, up to max_skips
+// in a row. Appends to `orbits` (and, per orbit, its tongue events to
+// `events`); returns why it stopped.
+std::string frequency_branch(const ReducedField& field, const GrazingOrbit& g, ShootingOptions s,
+                             const BackboneOptions& o, const BackboneFamily& family,
+                             std::vector<PeriodicOrbit>& orbits,
+                             std::vector<std::string>& events) {
+  s.kind = ShootingOptions::Amplitude::period;
+  const auto open = field.region(ActiveSet(static_cast<std::size_t>(field.n_contact()), false));
+  const Vector omega_open = open->omega2.cwiseMax(0).cwiseSqrt();
+  int skips = 0;
+  std::string skipped, why;
+  while (static_cast<long>(orbits.size()) < o.points) {
+    const PeriodicOrbit& last = orbits.back();
+    const double energy = vibration_energy(field, g, last);
+    const double omega = 2 * M_PI / last.period * (1 + o.frequency_step * (1 + skips));
+    if (omega > o.max_omega)
+      return "frequency: the next orbit's omega " + str(omega) + " exceeds " + str(o.max_omega);
+    s.amplitude = 2 * M_PI / omega;
+    // Secant predictor in the frequency from the last two orbits; after a
+    // skip the last orbit itself (the secant's reach grows with the step).
+    const PeriodicOrbit& before = orbits[orbits.size() - 2];
+    const double w_last = 2 * M_PI / last.period, w_before = 2 * M_PI / before.period;
+    const double r =
+        skips == 0 && w_last > w_before ? (omega - w_last) / (w_last - w_before) : 0;
+    const Vector u = last.u0 + r * (last.u0 - before.u0), v = last.v0 + r * (last.v0 - before.v0);
+    try {
+      PeriodicOrbit next = shoot(field, u, v, s.amplitude, s);
+      const double jump = std::abs(vibration_energy(field, g, next) / energy - 1);
+      if (jump <= o.energy_jump * (1 + skips)) {
+        orbits.push_back(std::move(next));
+        events.push_back(skipped);
+        skipped.clear();
+        skips = 0;
+        if (std::string end = family.end(orbits); !end.empty()) return end;
+        continue;
+      }
+      why = "the orbit at omega " + str(omega) + " changed the energy by " + str(jump) +
+            " of the last one's";
+    } catch (const NumericalError& e) {
+      why = "at omega " + str(omega) + ": " + e.what();
+    }
+    add_event(skipped, tongue_event(omega_open, omega));
+    if (++skips > o.max_skips)
+      return "frequency: no orbit of the branch at " + std::to_string(skips) +
+             " frequencies in a row after omega " + str(2 * M_PI / last.period) + " (last: " +
+             why + ")";
+  }
+  return "points: " + std::to_string(o.points) + " orbits computed";
+}
+
+// Why an arclength backbone stopped.
+std::string stop_reason(const ArclengthCurve<PeriodicOrbit>& curve, const BackboneOptions& o) {
+  switch (curve.stop) {
+    case ArclengthStop::max_points:
+      return "points: " + std::to_string(o.points) + " orbits computed";
+    case ArclengthStop::step_too_small:
+      return "the corrector failed at step " + str(o.step / 64) + " after orbit " +
+             std::to_string(curve.points.size() - 1) + ": " + curve.reason;
+    case ArclengthStop::ended:
+    case ArclengthStop::bound:  // no bound on a backbone
+      break;
+  }
+  return curve.reason;
+}
 
 }  // namespace
 
@@ -198,6 +290,18 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
   if (!(o.max_energy > 0))
     throw InputError("energy: expected a limit > 0, got " + str(o.max_energy));
   if (o.max_iterations < 1) throw InputError("iterations: expected >= 1");
+  if (o.branch == BackboneOptions::Branch::frequency) {
+    if (!(o.frequency_step > 0) || !std::isfinite(o.frequency_step))
+      throw InputError("frequencyStep: expected a finite relative step > 0, got " +
+                       str(o.frequency_step));
+    if (!(o.energy_jump > 0) || !std::isfinite(o.energy_jump))
+      throw InputError("energyJump: expected a finite relative bound > 0, got " +
+                       str(o.energy_jump));
+    if (o.max_skips < 0)
+      throw InputError("skips: expected >= 0, got " + std::to_string(o.max_skips));
+    if (!(o.max_omega > 0))
+      throw InputError("to: expected a frequency > 0, got " + str(o.max_omega));
+  }
   Backbone b;
   b.grazing = grazing_orbit(field, mode);
   const GrazingOrbit& g = b.grazing;
@@ -226,13 +330,13 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
   a.easy_iterations = std::numeric_limits<int>::max();
   // The first step takes the linear family's direction, which is not the
   // nonsmooth family's tangent (with mass on the contact nodes that one is
-  // vertical: the corrected point lies far from the predictor). From the
+  // vertical: the corrected point lies far from the predictor); where it
+  // fails, the fixed-period start above. From the
   // second on, a point farther than twice the step jumped to another branch
   // (round-off can decide where an unguarded corrector lands).
   a.max_points = static_cast<int>(std::min<long>(o.points, 2));
   continue_curve(family, a, curve);
-  if (curve.stop == ArclengthStop::step_too_small && curve.points.size() == 1 &&
-      !field.massless_boundary()) {
+  if (curve.stop == ArclengthStop::step_too_small && curve.points.size() == 1) {
     if (std::optional<PeriodicOrbit> start = vertical_start(field, g, shooting)) {
       curve.nodes.push_back(family.node(g.orbit, *start));
       curve.points.push_back(std::move(*start));
@@ -240,27 +344,22 @@ Backbone backbone(const ReducedField& field, Index mode, const BackboneOptions& 
       curve.reason += " (and no orbit at the fixed periods of the vertical start)";
     }
   }
-  if (curve.points.size() == 2) {
-    a.max_points = static_cast<int>(std::min<long>(o.points, std::numeric_limits<int>::max()));
-    a.max_jump = 2;
-    continue_curve(family, a, curve);
-  }
-  switch (curve.stop) {
-    case ArclengthStop::max_points:
-      b.stop_reason = "points: " + std::to_string(o.points) + " orbits computed";
-      break;
-    case ArclengthStop::step_too_small:
-      b.stop_reason = "the corrector failed at step " + str(o.step / 64) + " after orbit " +
-                      std::to_string(curve.points.size() - 1) + ": " + curve.reason;
-      break;
-    case ArclengthStop::ended:
-    case ArclengthStop::bound:  // no bound on a backbone
-      b.stop_reason = curve.reason;
-      break;
+  std::vector<std::string> tongues(curve.points.size());
+  if (curve.points.size() == 2 && o.branch == BackboneOptions::Branch::frequency) {
+    b.stop_reason = frequency_branch(field, g, shooting, o, family, curve.points, tongues);
+  } else {
+    if (curve.points.size() == 2) {
+      a.max_points = static_cast<int>(std::min<long>(o.points, std::numeric_limits<int>::max()));
+      a.max_jump = 2;
+      continue_curve(family, a, curve);
+    }
+    b.stop_reason = stop_reason(curve, o);
   }
   for (std::size_t k = 1; k < curve.points.size(); ++k)
     b.points.push_back(point_of(field, g, std::move(curve.points[k])));
   mark_events(b.points);
+  for (std::size_t k = 0; k < tongues.size() && k < b.points.size(); ++k)
+    if (!tongues[k].empty()) add_event(b.points[k].events, tongues[k]);
   return b;
 }
 

@@ -77,7 +77,12 @@ BackboneReport backbone(const ContactProblem& problem, const std::vector<double>
   s.precision(12);
   const BackbonePointReport &first = r.points.front(), &last = r.points.back();
   s << "backbone of mode " << mode << " from grazing (" << (options.half_period ? "half" : "full")
-    << "-period shooting, exact flow, pseudo-arclength step " << options.step << ")\n";
+    << "-period shooting, exact flow, pseudo-arclength step " << options.step;
+  if (options.branch == BackboneOptions::Branch::frequency)
+    s << "; then the frequency branch: steps " << options.frequency_step << " of omega, energy "
+      << "jumps above " << options.energy_jump << " skipped, at most " << options.max_skips
+      << " in a row";
+  s << ")\n";
   if (options.modes > 0)
     s << "reduced basis: " << options.modes << " fixed-interface modes + " << problem.n_contact()
       << " contact shapes (" << field.size() << " unknowns); each orbit's report gives the full "

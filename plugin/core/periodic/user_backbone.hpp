@@ -34,12 +34,34 @@ struct BackboneOptions {
   /// that is not fixed; -1: the dof of largest amplitude along the grazing
   /// orbit, kept along the backbone.
   long probe = -1;
+  /// How the backbone goes on past its first orbit beyond grazing
+  /// (method.md §6, "The primary branch"): `arclength`, pseudo-arclength
+  /// steps of `step` (follows any curve of orbits, internal-resonance
+  /// tongues included), or `frequency`, natural continuation in the
+  /// frequency: orbits at fixed periods, each from the last, the frequency
+  /// raised by `frequency_step` (relative) per step; an orbit whose
+  /// vibration energy differs from the last one's by more than
+  /// `energy_jump` (relative), or a failed Newton, is skipped and the next
+  /// frequency tried from the same orbit, steps and jump bound growing
+  /// with the number of skips (1 + skips), at most `max_skips` in a row;
+  /// each skip is a "tongue" event of the next orbit.
+  enum class Branch { arclength, frequency };
+  Branch branch = Branch::arclength;
+  double frequency_step = 0.002;
+  double energy_jump = 0.4;
+  int max_skips = 3;
+  /// `frequency`: stop before an orbit above this circular frequency.
+  double max_omega = std::numeric_limits<double>::infinity();
   /// Reduced basis (reduced_basis.hpp, as for periodic_orbit): this many
   /// fixed-interface modes plus the static contact shapes; 0: the full
   /// interior (at most 3000 dofs). The orbits' reports (BackboneReport::
   /// orbits) give the full model's residual along each.
   int modes = 0;
 };
+
+inline const char* name(BackboneOptions::Branch branch) {
+  return branch == BackboneOptions::Branch::frequency ? "frequency" : "arclength";
+}
 
 /// One orbit of a backbone and its monitors.
 struct BackbonePointReport {
@@ -64,7 +86,10 @@ struct BackbonePointReport {
   /// Space-separated: "grazing" (the start, or the number of switches
   /// changed since the previous orbit: a contact touched or left), "fold-
   /// frequency" / "fold-energy" (the frequency / the energy turns here
-  /// along the backbone), "stability" (changed since the previous orbit).
+  /// along the backbone), "stability" (changed since the previous orbit),
+  /// "tongue[j:r]" (branch = frequency: a frequency skipped just before
+  /// this orbit; j the open system's mode whose frequency is nearest an
+  /// integer multiple >= 2 of the skipped one, r = omega_j / omega there).
   std::string events;
 };
 
