@@ -74,6 +74,33 @@ TEST(ExactFlow, MasslessBoundaryConservesEnergyThroughSwitches) {
   }
 }
 
+// A sample at the end of the span is the end state, whatever the pieces'
+// durations add up to: their sum may fall an ulp short of T (the last
+// sample was then left unwritten: nbmOrbitState returned uninitialised
+// memory at some times of a 3D blade's orbit). Spans through many switches,
+// each sampled at its end and halfway.
+TEST(ExactFlow, ASampleAtTheEndOfTheSpanIsTheEndState) {
+  ImpactOscillator osc;
+  osc.kc = 10;
+  const auto field = osc.field();
+  const nbm::ExactFlow flow(field);
+  const Vector u = Vector::Constant(1, -3), v = Vector::Zero(1);
+  int switching = 0;
+  for (int k = 1; k <= 3000; ++k) {
+    const double T = 0.0371 * k;
+    const auto r = flow.integrate(u, v, T, false, {0.5 * T, T});
+    const auto half = flow.integrate(u, v, 0.5 * T, false);
+    ASSERT_EQ(r.samples.cols(), 2);
+    EXPECT_EQ(r.samples(0, 1), r.u(0)) << T;
+    EXPECT_EQ(r.samples(1, 1), r.v(0)) << T;
+    EXPECT_NEAR(r.samples(0, 0), half.u(0), 1e-12) << T;
+    switching += r.switches.size() > 2;
+  }
+  EXPECT_GT(switching, 200);
+  EXPECT_THROW(flow.integrate(u, v, 1, false, {0.5, 1.5}), nbm::InputError);
+  EXPECT_THROW(flow.integrate(u, v, 1, false, {0.5, 0.2}), nbm::InputError);
+}
+
 // Monodromy of the exact flow against central differences of the flow map,
 // through two contact phases. With mass on the contact dof (m_B > 0) the
 // acceleration jumps at the switches and only the saltation terms make the

@@ -398,6 +398,9 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
                      ", expected " + std::to_string(n));
   if (!(T >= 0) || !std::isfinite(T)) throw InputError("exact flow: the time span must be >= 0");
   if (!std::isfinite(t0)) throw InputError("exact flow: the start time must be finite");
+  for (std::size_t k = 0; k < sample_times.size(); ++k)
+    if (!(sample_times[k] >= (k > 0 ? sample_times[k - 1] : 0.0)) || !(sample_times[k] <= T))
+      throw InputError("exact flow: sample times must be sorted within [0, T]");
   FlowResult out;
   out.u = u0;
   out.v = v0;
@@ -417,10 +420,13 @@ FlowResult ExactFlow::integrate(const Vector& u0, const Vector& v0, double T, bo
     const FlowPiece& piece = *flow;
     const auto crossing = first_crossing(piece, 0, T - t);
     const double tau = crossing ? crossing->t : T - t;
-    for (; next_sample < sample_times.size() && sample_times[next_sample] <= t + tau;
+    // The last piece takes every remaining sample: they lie within T, and
+    // t + tau, a sum of the pieces' durations, may end an ulp short of a
+    // sample at T (a sample left unwritten is uninitialised memory).
+    for (; next_sample < sample_times.size() && (sample_times[next_sample] <= t + tau || !crossing);
          ++next_sample) {
       Vector us, vs;
-      piece.state(sample_times[next_sample] - t, us, vs);
+      piece.state(std::min(sample_times[next_sample] - t, tau), us, vs);
       out.samples.col(static_cast<Index>(next_sample)) << us, vs;
     }
     piece.state(tau, out.u, out.v);

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Runs an example whose last output line is "<name>: key=value key=value ..."
+# (<name>: letters, digits, dashes)
 # and checks bounds on the values.
 #   check-summary.sh <build> <repo> "<checks>" <script.edp> [script args...]
 # <checks>: space-separated "key<=bound" or "key>=bound" (numbers, any format
@@ -11,7 +12,7 @@ build=$1 repo=$2 checks=$3 script=$4
 shift 4
 out=$(bash "$repo/tests/scripts/run-freefem.sh" "$build" "$repo" "$script" "$@" 2>&1)
 status=$?
-line=$(printf '%s\n' "$out" | grep -E '^[A-Za-z-]+: .*=' | tail -n 1)
+line=$(printf '%s\n' "$out" | grep -E '^[A-Za-z0-9-]+: .*=' | tail -n 1)
 if [ $status -ne 0 ] || [ -z "$line" ]; then
   printf '%s\n' "$out" | tail -n 20
   echo "FAIL: script exited with $status or printed no summary line"
