@@ -291,6 +291,13 @@ struct Bilinear {
     const double V = w1() * std::sqrt(A * A - gp * gp);
     return 2 * (M_PI - std::acos(gp / A)) / w1() + (2 / w2()) * std::atan(V / (w2() * (g - z)));
   }
+  /// The two dofs (mass, contact dof) as a field.
+  nbm::ReducedField field() const {
+    Eigen::Matrix2d M, K;
+    M << m, 0, 0, mB;
+    K << k + kc, -kc, -kc, kc;
+    return nbm::ReducedField(M, K, Eigen::Vector2d(P, 0), {1}, Vector::Constant(1, g));
+  }
 };
 
 struct BilinearCase {
@@ -311,11 +318,7 @@ TEST_P(BilinearBackbone, FollowsTheClosedFormPeriod) {
   const auto [kc, P, half, mB] = GetParam();
   Bilinear exact;
   exact.kc = kc, exact.P = P, exact.mB = mB;
-  Eigen::Matrix2d M, K;
-  M << exact.m, 0, 0, mB;
-  K << exact.k + kc, -kc, -kc, kc;
-  const nbm::ReducedField field(M, K, Eigen::Vector2d(P, 0), {1},
-                                Vector::Constant(1, exact.g));
+  const nbm::ReducedField field = exact.field();
   nbm::BackboneOptions o;
   o.points = 40;
   o.step = 0.2;
@@ -365,11 +368,7 @@ TEST_P(BilinearBackbone, TheFrequencyBranchFollowsTheClosedFormPeriod) {
   const auto [kc, P, half, mB] = GetParam();
   Bilinear exact;
   exact.kc = kc, exact.P = P, exact.mB = mB;
-  Eigen::Matrix2d M, K;
-  M << exact.m, 0, 0, mB;
-  K << exact.k + kc, -kc, -kc, kc;
-  const nbm::ReducedField field(M, K, Eigen::Vector2d(P, 0), {1},
-                                Vector::Constant(1, exact.g));
+  const nbm::ReducedField field = exact.field();
   const double w0 = 2 * exact.w1() * exact.w2() / (exact.w1() + exact.w2());
   nbm::BackboneOptions o;
   o.points = 400;
