@@ -56,7 +56,7 @@ cxx=$(command -v clang++-14 || command -v clang++) || {
 echo "fuzz: configuring and building $bdir with $cxx"
 mkdir -p "$bdir"
 if ! cmake -S "$repo" -B "$bdir" -DCMAKE_CXX_COMPILER="$cxx" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DNBM_FUZZ=ON -DNBM_BUILD_TESTS=OFF \
+      "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" -DNBM_FUZZ=ON -DNBM_EIGEN_BLAS=OFF -DNBM_BUILD_TESTS=OFF \
       -DNBM_BUILD_BENCH=OFF -DNBM_SANITIZE=OFF >"$bdir/configure.log" 2>&1; then
   cat "$bdir/configure.log"
   echo "fuzz: configure failed"
