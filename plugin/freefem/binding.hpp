@@ -5,6 +5,7 @@
 
 #include <exception>
 #include <initializer_list>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>

@@ -6,6 +6,7 @@
 //               mass = "redistributed", positions = xy);  // the structure, once
 //   NBM S(Mo, dt = 1e-3, scheme = "newmark", beta = 0.25, gamma = 0.5);
 //   NBM A(Mo, dt = 1e-3, scheme = "generalized-alpha", rhoInf = 0.8);  // or "hht-alpha"
+//   NBM R(Mo, dt = 1e-3, modes = 20);  // on the reduced model (method.md §6)
 //   nbmPeriodicOrbit(Mo, u, v, T, F, ...);  // periodic tools take the model
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, ...);  // shorthand: a model
 //                                   // of its own (every named argument above)
@@ -52,12 +53,12 @@ constexpr int kModelParams = 8;
       {"rayleighK", &typeid(double)}, {"damping", &typeid(Matrice_Creuse<double>*)}, \
       {"obstacle", &typeid(ObstacleHandle*)}, {"solver", &typeid(string*)}
 // The named arguments of a time integrator (NBM), in this order.
-constexpr int kSchemeParams = 8;
+constexpr int kSchemeParams = 9;
 #define NBM_SCHEME_PARAMS                                                       \
   {"dt", &typeid(double)}, {"scheme", &typeid(string*)}, {"beta", &typeid(double)}, \
       {"gamma", &typeid(double)}, {"restitution", &typeid(double)},             \
       {"energy", &typeid(string*)}, {"crossings", &typeid(string*)},            \
-      {"rhoInf", &typeid(double)}
+      {"rhoInf", &typeid(double)}, {"modes", &typeid(long)}
 
 // The model of (M, K, cdofs, normals, gaps) and the named arguments `a`
 // (NBM_MODEL_PARAMS), built by `function`.
@@ -114,6 +115,13 @@ void build_solver(Stack s, NbmHandle* h, std::shared_ptr<const nbm::Model> model
                            {nbm::EnergyControl::kBounded, nbm::EnergyControl::kMonotone,
                             nbm::EnergyControl::kNone});
   if (a[7]) opt.rho_inf = GetAny<double>((*a[7])(s));
+  if (a[8]) {
+    const long modes = GetAny<long>((*a[8])(s));
+    if (modes < 1 || modes > std::numeric_limits<int>::max())
+      fail("NBM: modes: " + std::to_string(modes) +
+           ", expected a number of fixed-interface modes >= 1 (method.md §6)");
+    opt.modes = static_cast<int>(modes);
+  }
   bool fatal = false;
   if (a[6]) {
     const string mode = *GetAny<string*>((*a[6])(s));

@@ -7,6 +7,7 @@
 
 #include "api/model_data.hpp"
 #include "base/errors.hpp"
+#include "periodic/reduced_basis.hpp"
 #include "time/central_difference_stepper.hpp"
 #include "time/following_frame_stepper.hpp"
 #include "time/generalized_alpha.hpp"
@@ -20,6 +21,9 @@ namespace {
 // Round-off of a penetration, relative to the displacement scale (as the
 // steppers' check of an initial state).
 constexpr double kReplacePenetrationTolerance = 1e-12;
+// How far the expansion of a restart's reduced state may be from the u, v
+// given with it, relative to their size (the same computation: round-off).
+constexpr double kReducedStateTolerance = 1e-12;
 
 Vector to_vector(const std::vector<double>& x, long n, const char* name) {
   if (static_cast<long>(x.size()) != n)
@@ -70,6 +74,14 @@ void check_options(const SchemeOptions& options, const ModelOptions& model) {
                      "scheme \"newmark\" with beta = 1/4 and gamma = 1/2, no rayleighK and "
                      "no obstacle, and with mass = \"consistent\" no damping at all "
                      "(method.md §5.1, §5.3)");
+  if (options.modes.has_value() && (!implicit_nbm(scheme) || model.obstacle))
+    throw InputError("modes: " + (model.obstacle ? std::string("given with obstacle=, whose "
+                                                               "frame follows every component "
+                                                               "of the contact nodes")
+                                                 : with_scheme) +
+                     "; the reduced model (method.md §6) is integrated by the implicit NBM "
+                     "schemes \"newmark\", \"generalized-alpha\" and \"hht-alpha\" on a "
+                     "model without obstacle=");
   if (model.mass == MassTreatment::kRedistributed && !implicit_nbm(scheme))
     throw InputError("mass: \"redistributed\" needs scheme \"newmark\", "
                      "\"generalized-alpha\" or \"hht-alpha\" (the massless boundary has no "
@@ -94,11 +106,12 @@ EnergyControl energy_control(const SchemeOptions& options) {
   return options.energy.value_or(EnergyControl::kBounded);
 }
 
-// The time scheme of the options on a model (options checked).
+// The time scheme of the options on `problem`, the model's own or its
+// reduction, with `damping` in the problem's coordinates (options checked).
 std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model::Data& model,
+                                      const ContactProblem& problem, const Damping& damping,
                                       double& critical_dt) {
   critical_dt = 0;
-  const ContactProblem& problem = *model.problem;
   const SchemeParameters scheme = scheme_parameters(options);
   if (model.obstacle) {
     FollowingFrameOptions frame;
@@ -109,22 +122,22 @@ std::unique_ptr<Stepper> make_stepper(const SchemeOptions& options, const Model:
                                                    model.damping_user);
   }
   if (problem.massless_boundary())
-    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, scheme, model.damping,
+    return std::make_unique<MasslessNewmarkStepper>(problem, options.dt, scheme, damping,
                                                     ContactColumns::kAuto,
                                                     energy_control(options));
   if (implicit_nbm(options.scheme)) {
     NewmarkParameters parameters;
     parameters.scheme = scheme;
     parameters.energy = energy_control(options);
-    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, model.damping);
+    return std::make_unique<NewmarkStepper>(problem, options.dt, parameters, damping);
   }
   if (options.scheme == TimeScheme::kExplicit) {
-    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, model.damping);
+    auto cd = std::make_unique<CentralDifferenceStepper>(problem, options.dt, damping);
     critical_dt = cd->critical_dt();
     return cd;
   }
   return std::make_unique<MoreauJeanStepper>(problem, options.dt,
-                                             options.restitution.value_or(0.0), model.damping);
+                                             options.restitution.value_or(0.0), damping);
 }
 
 }  // namespace
@@ -144,6 +157,10 @@ struct Solver::Impl {
   SolverOptions options;  // the model's and the scheme's
   std::shared_ptr<const Model> model;
   const ContactProblem* problem = nullptr;  // the model's
+  // Option modes: the model's reduction and its contact problem, which the
+  // stepper integrates (null without it).
+  std::unique_ptr<ReducedBasis> basis;
+  std::unique_ptr<ContactProblem> reduced;
   std::unique_ptr<Stepper> stepper;
   double critical_dt = 0;
   long steps = 0, fallbacks = 0;
@@ -158,13 +175,39 @@ struct Solver::Impl {
     return {F, obstacle, F_rate.size() ? &F_rate : nullptr, F_accel.size() ? &F_accel : nullptr};
   }
 
-  /// Integrates `m` from now on: its stepper (options checked).
+  /// Integrates `m` from now on: its stepper (options checked), on its
+  /// reduction with the option modes.
   void build(std::shared_ptr<const Model> m) {
-    std::unique_ptr<Stepper> s = make_stepper(options, m->data(), critical_dt);
-    stepper = std::move(s);  // the old stepper refers to the old model: first
+    const Model::Data& data = m->data();
+    if (options.modes) {
+      basis = std::make_unique<ReducedBasis>(*data.problem,
+                                             Vector::Zero(data.problem->size()), *options.modes);
+      // Small and dense: factored by CHOLMOD in every process, whatever
+      // factors the full model.
+      reduced = std::make_unique<ContactProblem>(basis->contact_problem());
+      stepper = make_stepper(options, data, *reduced, basis->reduce(data.damping), critical_dt);
+    } else {
+      std::unique_ptr<Stepper> s =
+          make_stepper(options, data, *data.problem, data.damping, critical_dt);
+      stepper = std::move(s);  // the old stepper refers to the old model: first
+    }
     model = std::move(m);
     problem = &model->problem();
     obstacle = Obstacle::at_rest(problem->gaps());
+  }
+
+  /// The stepper's coordinates of a user vector (a state or a rate of it):
+  /// internal, then reduced with the option modes (the M-orthogonal
+  /// projection of the interior); up() goes back.
+  Vector down(const Vector& x_user) const {
+    const Vector x = problem->to_internal(x_user);
+    return basis ? basis->reduce_state(x) : x;
+  }
+  Vector up(const Vector& y) const { return problem->to_user(basis ? basis->expand_state(y) : y); }
+  /// The stepper's coordinates of a load: T^T F with the option modes.
+  Vector load_down(const Vector& F_user) const {
+    const Vector F = problem->to_internal(F_user);
+    return basis ? basis->reduce_load(F) : F;
   }
 
   /// What replace_contacts() puts back if the new description fails.
@@ -190,15 +233,29 @@ struct Solver::Impl {
   }
 
   void publish(std::vector<double>& u, std::vector<double>& v) {
-    const Vector uu = problem->to_user(stepper->u());
-    const Vector vv = problem->to_user(stepper->v());
-    const Vector aa = problem->to_user(stepper->a());
+    if (basis) {
+      // One pass over the basis for u and v; the acceleration only when
+      // asked for (acceleration_user). Restarts take the reduced state from
+      // the scheme state, so there is no round trip to make.
+      Matrix Y(reduced->size(), 2);
+      Y << stepper->u(), stepper->v();
+      const Matrix X = basis->expand_states(Y);
+      const Vector uu = problem->to_user(X.col(0)), vv = problem->to_user(X.col(1));
+      u.assign(uu.data(), uu.data() + uu.size());
+      v.assign(vv.data(), vv.data() + vv.size());
+      u_user = u;
+      v_user = v;
+      a_user.clear();
+      return;
+    }
+    const Vector uu = up(stepper->u());
+    const Vector vv = up(stepper->v());
+    const Vector aa = up(stepper->a());
     if (!problem->exact_round_trip()) {
       // Exact restarts: the state becomes the one a restart from the user's
       // arrays rebuilds (rotated contact nodes round off in user coordinates;
       // the round trip is not idempotent, hence the user arrays are kept).
-      stepper->replace_kinematics(problem->to_internal(uu), problem->to_internal(vv),
-                                  problem->to_internal(aa));
+      stepper->replace_kinematics(down(uu), down(vv), down(aa));
     }
     u.assign(uu.data(), uu.data() + uu.size());
     v.assign(vv.data(), vv.data() + vv.size());
@@ -216,17 +273,30 @@ struct Solver::Impl {
     const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
     for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
       if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-    const Vector F_int = p.to_internal(FF);
+    const Vector F_int = load_down(FF);
     if (continuing)
-      stepper->continue_from(p.to_internal(uu), p.to_internal(vv), load(F_int), t);
+      stepper->continue_from(down(uu), down(vv), load(F_int), t);
     else
-      stepper->initialize(p.to_internal(uu), p.to_internal(vv), load(F_int), t);
+      stepper->initialize(down(uu), down(vv), load(F_int), t);
     const Stepper& st = *stepper;  // finite data can still overflow (M^-1 F)
     if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
       throw NumericalError("initialization: the state is not finite (overflow); the data are "
                            "too badly scaled");
     publish(u, v);
   }
+
+  /// The acceleration on the user's dofs (expanded on demand on a reduced
+  /// model).
+  std::vector<double> acceleration_user() const {
+    if (!basis) return a_user;
+    const Vector a = up(stepper->a());
+    return {a.data(), a.data() + a.size()};
+  }
+
+  /// With the option modes the scheme state ends with the reduced state
+  /// (y_u, y_v, y_a), so that a restart goes on from the very coordinates
+  /// the run had (their expansion is u, v; projecting u, v back would round).
+  Index reduced_state_size() const { return basis ? 3 * reduced->size() : 0; }
 
   /// u, v must be the arrays the last call returned.
   void check_unchanged(const std::vector<double>& u, const std::vector<double>& v) const {
@@ -299,7 +369,7 @@ void Solver::set_load_rates(const std::vector<double>& F_rate,
     }
     const Vector xx = to_vector(*x, p.n_dofs(), name);
     if (!xx.allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-    *y = p.to_internal(xx);
+    *y = impl_->load_down(xx);
   }
 }
 
@@ -334,11 +404,33 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
                        std::to_string(active[k]) + ", expected 0 or 1");
     set[k] = active[k] == 1;
   }
-  const Vector F_int = p.to_internal(FF);
+  const Vector F_int = impl_->load_down(FF);
   const Vector state = Eigen::Map<const Vector>(scheme_state.data(), scheme_state.size());
   if (!state.allFinite()) throw InputError("scheme state: non-finite entries");
-  impl_->stepper->restore(p.to_internal(uu), p.to_internal(vv), p.to_internal(aa), set,
-                          impl_->load(F_int), t, state);
+  const Index R = impl_->reduced_state_size();
+  if (R == 0) {
+    impl_->stepper->restore(impl_->down(uu), impl_->down(vv), impl_->down(aa), set,
+                            impl_->load(F_int), t, state);
+  } else {
+    // A reduced model: the reduced state saved at the end of the scheme state.
+    if (state.size() < R)
+      throw InputError("scheme state: size " + std::to_string(state.size()) + ", expected " +
+                       "at least " + std::to_string(R) + " (it ends with the reduced state of " +
+                       "modes=, 3 x " + std::to_string(R / 3) + " entries: save it with u, v)");
+    const Index r = R / 3;
+    const Vector own = state.head(state.size() - R);
+    const Vector yu = state.segment(state.size() - R, r), yv = state.segment(state.size() - 2 * r, r),
+                 ya = state.tail(r);
+    for (const auto& [y, x, name] : {std::tuple{&yu, &uu, "u"}, {&yv, &vv, "v"}}) {
+      const Vector expanded = impl_->up(*y);
+      const double scale = std::max(x->cwiseAbs().maxCoeff(), expanded.cwiseAbs().maxCoeff());
+      if ((expanded - *x).cwiseAbs().maxCoeff() > kReducedStateTolerance * scale)
+        throw InputError(std::string("scheme state: its reduced state does not expand to ") +
+                         name + " (" + std::to_string((expanded - *x).cwiseAbs().maxCoeff()) +
+                         " apart); expected the scheme state saved with this " + name);
+    }
+    impl_->stepper->restore(yu, yv, ya, set, impl_->load(F_int), t, own);
+  }
   impl_->steps = impl_->fallbacks = 0;
   // u, v stay as given (fixed dofs zeroed): the internal state is their
   // image, exactly what the uninterrupted run holds after publish().
@@ -356,7 +448,7 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   const Vector FF = to_vector(F, p.n_dofs(), "F");
   if (!FF.allFinite()) throw InputError("F: non-finite entries");
   impl_->check_unchanged(u, v);
-  const Vector F_int = p.to_internal(FF);
+  const Vector F_int = impl_->load_down(FF);
   const StepReport r = impl_->stepper->step(impl_->load(F_int));
   const Stepper& st = *impl_->stepper;  // finite data can still overflow (beta dt^2 -> 0)
   if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())
@@ -372,6 +464,10 @@ void Solver::replace_contacts(const ContactDescription& contact, std::vector<dou
                               std::vector<double>& v, const std::vector<double>& F) {
   if (!initialized())
     throw InputError("replace contacts: no state yet; call the initialization first");
+  if (impl_->basis)
+    throw InputError("replace contacts: the solver integrates a reduced model (modes=), whose "
+                     "basis is built on its contact nodes; build a new one on the new contact "
+                     "description");
   impl_->check_unchanged(u, v);
   const double t = time();
   // Moreau-Jean's states penetrate by O(dt v) and keep it (the NBM schemes'
@@ -419,10 +515,14 @@ std::vector<long> Solver::active() const {
   const auto& a = impl_->stepper->active();
   return {a.begin(), a.end()};
 }
-std::vector<double> Solver::acceleration() const { return impl_->a_user; }
+std::vector<double> Solver::acceleration() const { return impl_->acceleration_user(); }
 std::vector<double> Solver::scheme_state() const {
-  const Vector x = impl_->stepper->scheme_state();
-  return {x.data(), x.data() + x.size()};
+  const Stepper& st = *impl_->stepper;
+  const Vector x = st.scheme_state();
+  std::vector<double> state(x.data(), x.data() + x.size());
+  if (impl_->basis)
+    for (const Vector* y : {&st.u(), &st.v(), &st.a()}) state.insert(state.end(), y->data(), y->data() + y->size());
+  return state;
 }
 std::vector<double> Solver::energies() const {
   const Energies e = impl_->stepper->energies();

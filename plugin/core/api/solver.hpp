@@ -45,6 +45,13 @@ struct SchemeOptions {
   std::optional<EnergyControl> energy;
   /// Restitution coefficient of scheme kMoreauJean, in [0, 1] (default 0).
   std::optional<double> restitution;
+  /// Integrate the reduced model (method.md §6, "Time integration on the
+  /// reduced model"): the interior on `modes` fixed-interface modes and the
+  /// static contact shapes, the contact dofs kept. States, loads, energies
+  /// and restarts stay on the user's dofs (the state is the reduced one
+  /// expanded). Implicit NBM schemes only, not with the option obstacle nor
+  /// replace_contacts(); 1 <= modes <= the number of interior dofs.
+  std::optional<int> modes;
 };
 
 /// The options of the shorthand constructor: the model's and the scheme's.
@@ -145,7 +152,9 @@ class Solver {
   /// The scheme's own part of the state (Moreau-Jean: the last impulse per
   /// contact node; the energy-stable steps of the NBM schemes: the loss a
   /// later step may give back, method.md §5.1; empty otherwise), for
-  /// restart().
+  /// restart(). With the option modes it ends with the reduced state
+  /// (displacement, velocity, acceleration in the reduced coordinates), which
+  /// a restart continues from bit for bit (it must expand to the u, v given).
   std::vector<double> scheme_state() const;
   /// kinetic, elastic, load potential, total (their sum), the work done by a
   /// moving obstacle since the start (method.md §8) and the energy dissipated

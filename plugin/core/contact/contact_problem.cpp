@@ -126,6 +126,14 @@ ContactProblem::ContactProblem(const SparseMatrix& M, const SparseMatrix& K,
   if (massless_positions) make_boundary_massless(redistributed_mass(*this, M, *massless_positions));
 }
 
+ContactProblem ContactProblem::with_massless_boundary(const SparseMatrix& M,
+                                                     const SparseMatrix& K,
+                                                     ContactSet contacts) {
+  ContactProblem p(M, K, std::move(contacts), {});
+  p.make_boundary_massless(p.M_);
+  return p;
+}
+
 Vector ContactProblem::lumped_mass() const {
   for (Index k = 0; k < contacts_.size(); ++k) {
     const double m0 = user_lumped_mass_(contacts_.dof(k, 0));

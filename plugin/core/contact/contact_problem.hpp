@@ -24,6 +24,13 @@ class ContactProblem {
   ContactProblem(const SparseMatrix& M, const SparseMatrix& K, ContactSet contacts,
                  std::vector<Index> fixed, const Matrix* massless_positions = nullptr);
 
+  /// A problem whose M already has M_CC = 0, M_CO = 0 (checked: InputError
+  /// otherwise), flagged as the massless boundary: the reduced model of a
+  /// massless boundary (periodic/reduced_basis.hpp), whose coordinates are
+  /// not nodes and have no positions to redistribute by.
+  static ContactProblem with_massless_boundary(const SparseMatrix& M, const SparseMatrix& K,
+                                               ContactSet contacts);
+
   Index n_dofs() const { return n_dofs_; }        ///< size of the user's vectors
   /// Internal index of a user dof, -1 for a fixed dof.
   Index internal_index(Index user_dof) const { return internal_[user_dof]; }

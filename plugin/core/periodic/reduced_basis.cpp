@@ -10,6 +10,11 @@
 
 namespace nbm {
 namespace {
+// The lowest fixed-interface frequency^2 relative to the mesh's frequency
+// scale below which K_OO is taken as singular: round-off pivots give
+// 1e-16 to 1e-13, the slenderest meshes' lowest modes far more.
+constexpr double kRigidMotionTolerance = 1e-12;
+
 
 SparseMatrix block(const SparseMatrix& A, const std::vector<Index>& rows,
                    const std::vector<Index>& cols) {
@@ -52,6 +57,16 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   const SymmetricEigen eig = lowest_eigenpairs(KOO, MOO, *KOO_inv, modes);
   const Matrix& Phi = eig.vectors;
   const Vector& w2 = eig.values;
+  // A rigid motion with the contact dofs clamped (a body free to slide along
+  // its obstacle) leaves K_OO singular, which its factorization may not see
+  // (round-off pivots): the lowest frequency is then zero to round-off
+  // against the mesh's frequency scale max K_ii / max M_ii.
+  const double scale = KOO.diagonal().maxCoeff() / MOO.diagonal().maxCoeff();
+  if (!(w2.minCoeff() > kRigidMotionTolerance * scale))
+    throw NumericalError("reduced basis: K_OO (contact dofs clamped) is singular: a rigid "
+                         "motion (lowest frequency^2 " + std::to_string(w2.minCoeff()) +
+                         ") moves the interior with the contact dofs held; fix the body "
+                         "(fixed=) so that clamping its contact dofs holds it in place");
   cutoff_ = std::sqrt(w2.maxCoeff());
 
   // V = [Phi, Psi], made M_OO-orthonormal (dependent columns dropped).
@@ -79,13 +94,40 @@ ReducedBasis::ReducedBasis(const ContactProblem& problem, const Vector& F, int m
   const Matrix Mr = T.transpose() * (problem.M() * T), Kr = T.transpose() * (problem.K() * T);
   std::vector<Index> contact(nc);
   for (Index k = 0; k < nc; ++k) contact[k] = r + k;
-  field_ = std::make_unique<ReducedField>(0.5 * (Mr + Mr.transpose()),
-                                          0.5 * (Kr + Kr.transpose()), T.transpose() * F,
-                                          contact, problem.gaps());
+  M_ = 0.5 * (Mr + Mr.transpose());
+  K_ = 0.5 * (Kr + Kr.transpose());
+  field_ = std::make_unique<ReducedField>(M_, K_, T.transpose() * F, contact, problem.gaps());
 }
 
 Vector ReducedBasis::reduce(const Vector& u_interior) const {
   return VtM_ * u_interior;
+}
+
+ContactProblem ReducedBasis::contact_problem() const {
+  const Index n = M_.rows(), nc = static_cast<Index>(contact_.size());
+  std::vector<Index> dofs(nc);
+  for (Index k = 0; k < nc; ++k) dofs[k] = n - nc + k;
+  ContactSet contacts(n, std::move(dofs), std::vector<double>(nc, 1.0), problem_.gaps());
+  const SparseMatrix M = M_.sparseView(), K = K_.sparseView();
+  if (problem_.massless_boundary())
+    return ContactProblem::with_massless_boundary(M, K, std::move(contacts));
+  return ContactProblem(M, K, std::move(contacts), {});
+}
+
+Vector ReducedBasis::reduce_state(const Vector& x) const {
+  Vector y(V_.cols() + static_cast<Index>(contact_.size()));
+  y << reduce(x(interior_)), x(contact_);
+  return y;
+}
+
+Vector ReducedBasis::expand_state(const Vector& y) const { return expand_states(y).col(0); }
+
+Matrix ReducedBasis::expand_states(const Matrix& Y) const {
+  const Index m = V_.cols();
+  Matrix X(problem_.size(), Y.cols());
+  X(interior_, Eigen::all) = V_ * Y.topRows(m);
+  X(contact_, Eigen::all) = Y.bottomRows(static_cast<Index>(contact_.size()));
+  return X;
 }
 
 Vector ReducedBasis::reduce_load(const Vector& F) const {

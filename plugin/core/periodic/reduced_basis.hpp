@@ -35,6 +35,20 @@ class ReducedBasis {
   /// u_O = V q.
   Vector expand(const Vector& q) const { return V_ * q; }
 
+  /// The reduced model as a contact problem of its own, for the time
+  /// steppers (method.md §6, "Time integration on the reduced model"):
+  /// coordinates y = (q, u_C), contact dofs last with their node's normal as
+  /// their only component, the full model's gaps, no fixed dofs; a massless
+  /// boundary stays massless.
+  ContactProblem contact_problem() const;
+  /// y = (q, x_C) of a full internal vector x (q: the M_OO-orthogonal
+  /// projection of x_O), and x = T y = (V q, u_C) back; expand_state of
+  /// reduce_state is the identity on range(T).
+  Vector reduce_state(const Vector& x) const;
+  Vector expand_state(const Vector& y) const;
+  /// expand_state of every column (one pass over V for all of them).
+  Matrix expand_states(const Matrix& Y) const;
+
   /// The reduced problem's coordinates (q, u_C) are T^T x of the full
   /// model's internal ones, T = [V 0; 0 I]: a load F becomes T^T F, a
   /// damping matrix T^T C T, the harmonics of a forced orbit likewise (the
@@ -62,6 +76,7 @@ class ReducedBasis {
   Matrix V_;               // n_O x (m + n_c), M_OO-orthonormal columns
   Matrix VtM_;             // V^T M_OO: reduce() is a projection
   double cutoff_ = 0;
+  Matrix M_, K_;           // T^T M T, T^T K T (symmetrized)
   std::unique_ptr<ReducedField> field_;
 };
 
