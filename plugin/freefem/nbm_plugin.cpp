@@ -7,6 +7,7 @@
 //   NBM S(Mo, dt = 1e-3, scheme = "newmark", beta = 0.25, gamma = 0.5);
 //   NBM A(Mo, dt = 1e-3, scheme = "generalized-alpha", rhoInf = 0.8);  // or "hht-alpha"
 //   NBM R(Mo, dt = 1e-3, modes = 20);  // on the reduced model (method.md §6)
+//   real r = nbmReductionResidual(R);  // the full model's residual at its state
 //   nbmPeriodicOrbit(Mo, u, v, T, F, ...);  // periodic tools take the model
 //   NBM S(M, K, cdofs, normals, gaps, dt = 1e-3, ...);  // shorthand: a model
 //                                   // of its own (every named argument above)
@@ -394,6 +395,10 @@ long nbm_n_contact(ModelHandle* const& h) { return model_of(h, "nbmContactNodes"
 double nbm_time(NbmHandle* const& h) { return solver_of(h, "nbmTime").time(); }
 double nbm_critical_dt(NbmHandle* const& h) { return solver_of(h, "nbmCriticalDt").critical_dt(); }
 long nbm_fallbacks(NbmHandle* const& h) { return solver_of(h, "nbmFallbacks").fallbacks(); }
+double nbm_reduction_residual(NbmHandle* const& h) {
+  nbm::Solver& S = solver_of(h, "nbmReductionResidual");
+  return guarded("nbmReductionResidual", [&] { return S.reduction_residual(); });
+}
 long nbm_crossings(NbmHandle* const& h) {
   solver_of(h, "nbmCrossings");
   return h->crossings;
@@ -442,6 +447,7 @@ void Load_Init() {
   Global.Add("nbmMpiSize", "(", new OneOperator0<long>(nbm_mpi_size));
   Global.Add("nbmCriticalDt", "(", new OneOperator1_<double, H>(nbm_critical_dt));
   Global.Add("nbmFallbacks", "(", new OneOperator1_<long, H>(nbm_fallbacks));
+  Global.Add("nbmReductionResidual", "(", new OneOperator1_<double, H>(nbm_reduction_residual));
   Global.Add("nbmContactNodes", "(", new OneOperator1_<long, ModelHandle*>(nbm_n_contact));
   Global.Add("nbmCrossings", "(", new OneOperator1_<long, H>(nbm_crossings));
   load_orbit_functions();

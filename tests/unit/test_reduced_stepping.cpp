@@ -150,6 +150,43 @@ TEST(ReducedStepping, TheRunConvergesToTheFullOneAsModesAreAdded) {
   }
 }
 
+TEST(ReducedStepping, TheReductionResidualFallsWithTheModes) {
+  // The full model's residual at the expanded state: round-off with every
+  // interior mode, falling as modes are added, both mass treatments.
+  for (const bool massless : {true, false}) {
+    const Cantilever c(0.3, 0.005, 16, 4);
+    const StdVec F = nbm_test::to_std(c.a.F);
+    std::vector<double> residuals;
+    for (const int m : {4, 16, 64, c.interior()}) {
+      Solver s(nbm_test::to_coo(c.a.M), nbm_test::to_coo(c.a.K), c.contact,
+               c.options(massless, 2e-3, m));
+      StdVec u(F.size(), 0.0), v(F.size(), 0.0);
+      s.initialize(u, v, F);
+      double worst = 0;
+      long closed = 0;
+      for (int k = 0; k < 200; ++k) {
+        s.step(u, v, F);
+        worst = std::max(worst, s.reduction_residual());
+        for (long a : s.active()) closed += a;
+      }
+      ASSERT_GT(closed, 0);
+      residuals.push_back(worst);
+      std::printf("  %s, %3d modes: largest reduction residual over 200 steps %.2e\n",
+                  massless ? "massless" : "consistent", m, worst);
+    }
+    EXPECT_LT(residuals.back(), 1e-10);
+    for (std::size_t k = 1; k < residuals.size(); ++k) EXPECT_LT(residuals[k], residuals[k - 1]);
+  }
+  const Cantilever c(0.3);
+  Solver full(nbm_test::to_coo(c.a.M), nbm_test::to_coo(c.a.K), c.contact, c.options(true, 2e-3));
+  expect_throw_with<nbm::InputError>([&] { full.reduction_residual(); },
+                                     {"reduction residual: the solver integrates the full model"});
+  Solver fresh(nbm_test::to_coo(c.a.M), nbm_test::to_coo(c.a.K), c.contact,
+               c.options(true, 2e-3, 4));
+  expect_throw_with<nbm::InputError>([&] { fresh.reduction_residual(); },
+                                     {"reduction residual: no state yet"});
+}
+
 TEST(ReducedStepping, EnergiesAreTheFullModelsOfTheExpandedState) {
   // Consistent mass: the reported total is 1/2 v'Mv + 1/2 u'Ku - F'u of the
   // published (expanded) state with the user's matrices.

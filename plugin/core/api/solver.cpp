@@ -167,6 +167,9 @@ struct Solver::Impl {
   // The user arrays as last returned: a step must start from them. a_user:
   // the acceleration in user coordinates, as acceleration() hands it out.
   std::vector<double> u_user, v_user, a_user;
+  // With the option modes: the last load, full internal coordinates (for
+  // reduction_residual).
+  Vector F_full;
   // The obstacle and the load's rates of the next call (internal coordinates).
   Obstacle obstacle;
   Vector F_rate, F_accel;
@@ -204,10 +207,15 @@ struct Solver::Impl {
     return basis ? basis->reduce_state(x) : x;
   }
   Vector up(const Vector& y) const { return problem->to_user(basis ? basis->expand_state(y) : y); }
-  /// The stepper's coordinates of a load: T^T F with the option modes.
-  Vector load_down(const Vector& F_user) const {
-    const Vector F = problem->to_internal(F_user);
-    return basis ? basis->reduce_load(F) : F;
+  /// The stepper's coordinates of a load or of its rates: T^T F with the
+  /// option modes. `current`: the load of the state the call reaches, kept
+  /// (F_full).
+  Vector load_down(const Vector& F_user, bool current) {
+    Vector F = problem->to_internal(F_user);
+    if (!basis) return F;
+    Vector F_reduced = basis->reduce_load(F);
+    if (current) F_full = std::move(F);
+    return F_reduced;
   }
 
   /// What replace_contacts() puts back if the new description fails.
@@ -273,7 +281,7 @@ struct Solver::Impl {
     const Vector uu = to_vector(u, n, "u"), vv = to_vector(v, n, "v"), FF = to_vector(F, n, "F");
     for (const auto& [x, name] : {std::pair{&uu, "u"}, {&vv, "v"}, {&FF, "F"}})
       if (!x->allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-    const Vector F_int = load_down(FF);
+    const Vector F_int = load_down(FF, true);
     if (continuing)
       stepper->continue_from(down(uu), down(vv), load(F_int), t);
     else
@@ -340,6 +348,20 @@ long Solver::steps() const { return impl_->steps; }
 long Solver::fallbacks() const { return impl_->fallbacks; }
 double Solver::critical_dt() const { return impl_->critical_dt; }
 
+double Solver::reduction_residual() const {
+  const Impl& m = *impl_;
+  if (!m.basis)
+    throw InputError("reduction residual: the solver integrates the full model; it is the "
+                     "reduction error of a reduced one (modes=)");
+  if (!m.stepper->initialized())
+    throw InputError("reduction residual: no state yet; call the initialization first");
+  Matrix Y(m.reduced->size(), 3);
+  Y << m.stepper->u(), m.stepper->v(), m.stepper->a();
+  const Matrix X = m.basis->expand_states(Y);
+  return m.basis->equation_residual(X.col(0), X.col(1), X.col(2), m.F_full,
+                                    m.model->data().damping, m.stepper->active());
+}
+
 void Solver::set_obstacle(const std::vector<double>& g, const std::vector<double>& g_rate,
                           const std::vector<double>& g_accel) {
   if (impl_->options.obstacle)
@@ -369,7 +391,7 @@ void Solver::set_load_rates(const std::vector<double>& F_rate,
     }
     const Vector xx = to_vector(*x, p.n_dofs(), name);
     if (!xx.allFinite()) throw InputError(std::string(name) + ": non-finite entries");
-    *y = impl_->load_down(xx);
+    *y = impl_->load_down(xx, false);
   }
 }
 
@@ -404,7 +426,7 @@ void Solver::restart(std::vector<double>& u, std::vector<double>& v,
                        std::to_string(active[k]) + ", expected 0 or 1");
     set[k] = active[k] == 1;
   }
-  const Vector F_int = impl_->load_down(FF);
+  const Vector F_int = impl_->load_down(FF, true);
   const Vector state = Eigen::Map<const Vector>(scheme_state.data(), scheme_state.size());
   if (!state.allFinite()) throw InputError("scheme state: non-finite entries");
   const Index R = impl_->reduced_state_size();
@@ -448,7 +470,7 @@ StepInfo Solver::step(std::vector<double>& u, std::vector<double>& v,
   const Vector FF = to_vector(F, p.n_dofs(), "F");
   if (!FF.allFinite()) throw InputError("F: non-finite entries");
   impl_->check_unchanged(u, v);
-  const Vector F_int = impl_->load_down(FF);
+  const Vector F_int = impl_->load_down(FF, true);
   const StepReport r = impl_->stepper->step(impl_->load(F_int));
   const Stepper& st = *impl_->stepper;  // finite data can still overflow (beta dt^2 -> 0)
   if (!st.u().allFinite() || !st.v().allFinite() || !st.a().allFinite())

@@ -143,6 +143,13 @@ class Solver {
   long fallbacks() const;
   /// Critical time step of the explicit scheme (0 for the implicit one).
   double critical_dt() const;
+  /// With the option modes, the reduction error of the current state: the
+  /// full model's residual P^T (M u'' + C u' + K u - F) at the expanded
+  /// state under the last load, P its nodal boundary relation on the current
+  /// contact set, relative to the size of its terms (method.md §6; 0 to
+  /// round-off with every interior mode). InputError without modes or before
+  /// a state.
+  double reduction_residual() const;
 
   // Diagnostics of the current state (method.md §2, §7).
   std::vector<double> reactions() const;  ///< lambda >= 0 per contact node

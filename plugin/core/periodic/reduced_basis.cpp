@@ -187,6 +187,12 @@ double ReducedBasis::full_residual(const Vector& q, const Vector& v, const Vecto
   Vector F = F_;
   for (std::size_t k = 0; k < load.cos.size(); ++k) F += std::cos((k + 1) * load.omega * t) * load.cos[k];
   for (std::size_t k = 0; k < load.sin.size(); ++k) F += std::sin((k + 1) * load.omega * t) * load.sin[k];
+  return equation_residual(x, xv, xa, F, damping, reg.active);
+}
+
+double ReducedBasis::equation_residual(const Vector& x, const Vector& xv, const Vector& xa,
+                                       const Vector& F, const Damping& damping,
+                                       const ActiveSet& active) const {
   const SparseMatrix C = damping_matrix(damping, problem_.M(), problem_.K());
   Vector r = problem_.M() * xa + problem_.K() * x - F;
   Vector terms = problem_.M().cwiseAbs() * xa.cwiseAbs() + problem_.K().cwiseAbs() * x.cwiseAbs() +
@@ -199,8 +205,8 @@ double ReducedBasis::full_residual(const Vector& q, const Vector& v, const Vecto
   // nodal boundary relation (open contacts: u_I = K_II^-1 (F_I - K_IO u_O ...)).
   Vector R = r(interior_);
   std::vector<Index> open_dofs;
-  for (Index k = 0; k < f.n_contact(); ++k)
-    if (!reg.active[k]) open_dofs.push_back(contact_[k]);
+  for (std::size_t k = 0; k < contact_.size(); ++k)
+    if (!active[k]) open_dofs.push_back(contact_[k]);
   if (!open_dofs.empty()) {
     const Matrix KII = Matrix(block(problem_.K(), open_dofs, open_dofs));
     const Vector y = KII.llt().solve(r(open_dofs));

@@ -68,6 +68,13 @@ class ReducedBasis {
   double full_residual(const Vector& q, const Vector& v, const Vector& a, double t,
                        const ExactFlow& flow, const Damping& damping,
                        const HarmonicLoad& load) const;
+  /// The same residual at full internal vectors (x, x', x'') under the load
+  /// F with the contacts of `active` closed: P^T (M x'' + C x' + K x - F)
+  /// with P the full model's nodal boundary relation on that set, relative
+  /// to the size of its terms (the time integrator's reduction error,
+  /// api/solver.hpp).
+  double equation_residual(const Vector& x, const Vector& xv, const Vector& xa, const Vector& F,
+                           const Damping& damping, const ActiveSet& active) const;
 
  private:
   const ContactProblem& problem_;

@@ -78,6 +78,7 @@ nbm_bad_case(dt-negative [=[NBM: dt: -0\.020*, expected a positive finite time s
 nbm_bad_case(dt-nan [=[NBM: dt: -?nan, expected a positive finite time step]=])
 nbm_bad_case(dt-missing [=[NBM: the time step dt=\.\.\. is required]=])
 nbm_bad_case(scheme-unknown [=[NBM: scheme: "implicit", expected "newmark", "generalized-alpha", "hht-alpha", "explicit" or "moreau-jean"]=])
+nbm_bad_case(reduction-residual-full [=[nbmReductionResidual: reduction residual: the solver integrates the full model]=])
 nbm_bad_case(modes-zero [=[NBM: modes: 0, expected a number of fixed-interface modes >= 1]=])
 nbm_bad_case(modes-range [=[NBM: modes: 11. expected 1 \.\. 10 \(the number of interior dofs\)]=])
 nbm_bad_case(modes-explicit [=[NBM: modes: given with scheme "explicit". the reduced model \(method.md §6\) is integrated by the implicit NBM schemes]=])
