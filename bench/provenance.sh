@@ -34,3 +34,18 @@ tool_blocks() {
     echo
   done
 }
+
+# write_page <page> <function>: runs <function>, which prints the page's
+# Markdown, and moves what it printed to <page> (mode 644) once it is done,
+# then prints it. The function may use "$work", a scratch folder removed
+# afterwards.
+write_page() {
+  local page=$1 tmp
+  tmp=$(mktemp)
+  work=$(mktemp -d)
+  "$2" > "$tmp"
+  rm -rf "$work"
+  chmod 644 "$tmp"
+  mv "$tmp" "$page"
+  cat "$page"
+}
